@@ -1,0 +1,152 @@
+// The stub host: a minimal headless deferred renderer that replicates what an engine hands a
+// post-process (depth, HDR back buffer, shadow maps) and runs a post-process stack.
+// It does not depend on the Tyndall plugin: the plugin is inserted as a PostProcessEffect.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <vulkan/vulkan.h>
+
+#include "tyndall_host/scene.h"
+
+namespace tyndall::host {
+
+struct DeviceOptions {
+  bool validation = false;       ///< enable VK_LAYER_KHRONOS_validation with synchronization validation
+  bool preferDiscreteGpu = true; ///< a discrete GPU if present, else any (lavapipe on a CPU-only machine)
+};
+
+/// Instance, physical device, device and one graphics+compute queue, created headless.
+/// Enables Vulkan 1.3 features dynamicRendering, synchronization2 and the core features
+/// dualSrcBlend, depthClamp (what the plugin and the host need).
+class Device {
+ public:
+  static std::unique_ptr<Device> create(const DeviceOptions& options, std::string& error);
+  ~Device();
+
+  VkInstance instance() const;
+  VkPhysicalDevice physicalDevice() const;
+  VkDevice device() const;
+  VkQueue queue() const;
+  std::uint32_t queueFamily() const;
+  std::string name() const;  ///< physical device name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  PFN_vkGetInstanceProcAddr getInstanceProcAddr() const;
+  PFN_vkGetDeviceProcAddr getDeviceProcAddr() const;
+
+  /// Validation messages (warnings and errors) received so far, each one line.
+  const std::vector<std::string>& validationMessages() const;
+  void clearValidationMessages();
+
+  struct Impl;
+ private:
+  explicit Device(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+enum class DepthConvention { Standard, Reverse };
+
+struct RenderSettings {
+  std::uint32_t width = 640;
+  std::uint32_t height = 360;
+  std::uint32_t shadowMapSize = 0;  ///< 0: the scene's shadowMap.size
+  DepthConvention depth = DepthConvention::Standard;
+  bool infiniteFar = false;         ///< projection with the far plane at infinity
+  std::uint32_t framesInFlight = 2; ///< ≥ 1
+  VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+  bool aovImages = false;           ///< allocate the two RGBA32F AOV images handed to effects
+};
+
+/// An image of the host as a post-process sees it (mirrors tyndall::ImageRef).
+struct HostImage {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{};
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+};
+
+struct HostShadowMap {
+  HostImage depth;               ///< D32_SFLOAT, SHADER_READ_ONLY_OPTIMAL when effects run
+  glm::mat4 worldToShadowClip{1.0f};
+};
+
+/// What the host hands each post-process effect, per frame.
+struct PostProcessInputs {
+  std::uint64_t frameIndex = 0;
+  std::uint32_t frameSlot = 0;       ///< frameIndex % framesInFlight
+  glm::mat4 view{1.0f};              ///< world → view (lookAt)
+  glm::mat4 projection{1.0f};        ///< Vulkan clip (depth [0,1]), y flipped so image row 0 is the top
+  const Scene* scene = nullptr;      ///< light and medium come from here
+  std::vector<HostShadowMap> shadowMaps;  ///< 1 (directional, spot) or 6 (point)
+  HostImage depth;                   ///< D32_SFLOAT, DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+  HostImage color;                   ///< back buffer, COLOR_ATTACHMENT_OPTIMAL
+  HostImage aovScattering;           ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
+  HostImage aovTransmittance;        ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
+};
+
+/// A pass of the post-process stack, inserted exactly as an engine would insert one.
+class PostProcessEffect {
+ public:
+  virtual ~PostProcessEffect() = default;
+  /// Records into `cmd`; returns false with `error` to abort the frame.
+  virtual bool record(VkCommandBuffer cmd, const PostProcessInputs& inputs, std::string& error) = 0;
+  /// The output extent changed; the GPU is idle.
+  virtual bool resize(VkExtent2D extent, std::string& error) = 0;
+};
+
+/// Float RGBA image read back from the GPU, row 0 at the top.
+struct ImageRgba32f {
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::vector<float> pixels;  ///< width · height · 4
+};
+
+class Renderer {
+ public:
+  static std::unique_ptr<Renderer> create(Device& device, const Scene& scene,
+                                          const RenderSettings& settings, std::string& error);
+  ~Renderer();
+
+  /// Appends an effect to the post-process stack (runs after lighting, before display).
+  void addPostProcess(PostProcessEffect* effect);
+
+  /// Renders one frame (shadow, G-buffer, lighting, post-process stack), submits it and returns
+  /// without waiting for it unless framesInFlight frames are already pending.
+  bool renderFrame(std::string& error);
+  /// Waits until the GPU finished every submitted frame.
+  void waitIdle();
+  /// Rebuilds size-dependent resources (GPU idle first) and calls every effect's resize.
+  bool resize(std::uint32_t width, std::uint32_t height, std::string& error);
+
+  /// After waitIdle: the back buffer of the last frame (scene-linear), and the AOVs.
+  bool readBackBuffer(ImageRgba32f& out, std::string& error);
+  bool readAovScattering(ImageRgba32f& out, std::string& error);
+  bool readAovTransmittance(ImageRgba32f& out, std::string& error);
+
+  const RenderSettings& settings() const;
+  glm::mat4 viewMatrix() const;
+  glm::mat4 projectionMatrix() const;
+
+  struct Impl;
+ private:
+  explicit Renderer(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Display transform with OpenColorIO (config shipped in host-stub/ocio/config.ocio, embedded at
+/// build time): scene-linear Rec.709 → sRGB display, 8-bit RGBA, row 0 at the top.
+bool displayToSrgb8(const ImageRgba32f& linear, std::vector<std::uint8_t>& rgba8, std::string& error);
+
+/// Image files. PNG through stb_image_write, EXR (RGB float32, scene-linear) through OpenEXR.
+/// Both write to a temporary file and rename, so nothing is half-written.
+bool writePng(const std::string& path, std::uint32_t width, std::uint32_t height,
+              const std::vector<std::uint8_t>& rgba8, std::string& error);
+bool writeExr(const std::string& path, const ImageRgba32f& image, std::string& error);
+bool readExr(const std::string& path, ImageRgba32f& out, std::string& error);
+
+}  // namespace tyndall::host

@@ -1,0 +1,80 @@
+// Depth conventions detected from the projection matrix (plugin/src/camera.cpp).
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "camera.h"
+
+namespace {
+
+// Vulkan clip depth [0, 1], built by hand so no GL convention leaks in.
+glm::dmat4 perspective(double fovY, double aspect, double n, double f, bool reversed) {
+  const double t = 1.0 / std::tan(fovY / 2.0);
+  glm::dmat4 p(0.0);
+  p[0][0] = t / aspect;
+  p[1][1] = -t;  // y flipped: row 0 at the top
+  p[2][3] = -1.0;
+  const bool infinite = std::isinf(f);
+  if (!reversed) {
+    p[2][2] = infinite ? -1.0 : f / (n - f);
+    p[3][2] = infinite ? -n : f * n / (n - f);
+  } else {
+    p[2][2] = infinite ? 0.0 : n / (f - n);
+    p[3][2] = infinite ? n : f * n / (f - n);
+  }
+  return p;
+}
+
+struct Case {
+  bool reversed;
+  double farPlane;
+};
+
+TEST(Projection, DetectsEveryConvention) {
+  for (Case c : {Case{false, 200.0}, Case{true, 200.0}, Case{false, INFINITY}, Case{true, INFINITY}}) {
+    tyndall::ProjectionInfo info;
+    const glm::dmat4 p = perspective(1.0, 16.0 / 9.0, 0.1, c.farPlane, c.reversed);
+    ASSERT_TRUE(tyndall::analyzeProjection(glm::dmat4(glm::mat4(p)), info).ok());
+    EXPECT_EQ(info.reversed, c.reversed);
+    EXPECT_EQ(info.infiniteFar, std::isinf(c.farPlane));
+    EXPECT_NEAR(info.nearDistance, 0.1, 1e-6);
+    if (!std::isinf(c.farPlane)) {
+      EXPECT_NEAR(info.farDistance, c.farPlane, 1e-3 * c.farPlane);
+    }
+    EXPECT_EQ(info.farNdc, c.reversed ? 0.0f : 1.0f);
+    EXPECT_EQ(info.nearNdc, c.reversed ? 1.0f : 0.0f);
+  }
+}
+
+TEST(Projection, FarToNearRatios) {
+  // Finite far planes up to ~4·10^6 near distances are told apart from infinity in float.
+  for (double ratio : {10.0, 1e3, 1e5}) {
+    for (bool reversed : {false, true}) {
+      tyndall::ProjectionInfo info;
+      const glm::dmat4 p = glm::dmat4(glm::mat4(perspective(1.0, 1.0, 0.01, 0.01 * ratio, reversed)));
+      ASSERT_TRUE(tyndall::analyzeProjection(p, info).ok()) << ratio;
+      EXPECT_FALSE(info.infiniteFar) << ratio;
+      EXPECT_NEAR(info.farDistance / (0.01 * ratio), 1.0, 0.05) << ratio << " reversed " << reversed;
+    }
+  }
+  tyndall::ProjectionInfo info;
+  ASSERT_TRUE(tyndall::analyzeProjection(glm::dmat4(glm::mat4(perspective(1.0, 1.0, 0.01, 1e7, false))), info).ok());
+  EXPECT_TRUE(info.infiniteFar);
+}
+
+TEST(Projection, RejectsBadMatrices) {
+  tyndall::ProjectionInfo info;
+  EXPECT_FALSE(tyndall::analyzeProjection(glm::dmat4(0.0), info).ok());  // singular
+  glm::dmat4 nan = perspective(1.0, 1.0, 0.1, 100.0, false);
+  nan[0][0] = NAN;
+  EXPECT_FALSE(tyndall::analyzeProjection(nan, info).ok());
+  EXPECT_FALSE(tyndall::analyzeProjection(glm::dmat4(1.0), info).ok());  // orthographic
+  // near >= far: swap the planes.
+  const glm::dmat4 swapped = perspective(1.0, 1.0, 100.0, 0.1, false);
+  const tyndall::Outcome o = tyndall::analyzeProjection(swapped, info);
+  EXPECT_FALSE(o.ok());
+  EXPECT_EQ(o.status, tyndall::Status::InvalidArgument);
+  EXPECT_FALSE(o.message.empty());
+}
+
+}  // namespace

@@ -1,0 +1,278 @@
+// Tyndall: light shafts in homogeneous single-scattering media, as a Vulkan post-process.
+//
+// The host owns the instance, the device, the queues and the submission. Tyndall records its
+// passes into the host's command buffer and leaves the back buffer holding
+//     out = in · transmittance + in-scattering            (per RGB channel)
+// See docs/INTEGRATION.md for a walk-through.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+namespace tyndall {
+
+// ---------------------------------------------------------------------------------------------
+// Errors
+// ---------------------------------------------------------------------------------------------
+
+/// What went wrong. Tyndall never throws across its API and never aborts on bad input.
+enum class Status : std::int32_t {
+  Success = 0,
+  InvalidArgument,     ///< a value out of range, NaN/Inf, null handle, mismatched sizes…
+  UnsupportedFormat,   ///< an image format Tyndall cannot read or write for that input
+  UnsupportedFeature,  ///< the device or the frame asks for something not available
+  VulkanError,         ///< a Vulkan call failed; `Outcome::vkResult` holds its result
+};
+
+/// Human-readable name of a status ("InvalidArgument", …).
+const char* to_string(Status status) noexcept;
+
+/// The result of a call: a status, the Vulkan result where one is involved, and one readable line.
+struct Outcome {
+  Status status = Status::Success;
+  VkResult vkResult = VK_SUCCESS;
+  std::string message;
+
+  [[nodiscard]] bool ok() const noexcept { return status == Status::Success; }
+  explicit operator bool() const noexcept { return ok(); }
+};
+
+enum class Severity : std::uint32_t { Info, Warning, Error };
+
+/// Called for every error Tyndall reports and for warnings (e.g. a pipeline created lazily in a
+/// frame). May be called from `create`, `resize` and `record`, on the calling thread.
+using MessageCallback = void (*)(Severity severity, const char* message, void* userData);
+
+// ---------------------------------------------------------------------------------------------
+// Profiles
+// ---------------------------------------------------------------------------------------------
+
+/// Quality profiles. A profile maps to a technique and its parameters through the profile table
+/// (plugin/src/profiles.cpp, justified in docs/TRADEOFFS.md). Switching needs no new context.
+enum class Profile : std::uint32_t {
+  Reference,    ///< brute force per pixel, texel by texel through the shadow map (validation)
+  High,
+  Balanced,
+  Performance,
+  Auto,         ///< best quality that fits `FrameDesc::autoBudgetMilliseconds`
+};
+
+/// The technique that actually ran for a frame.
+enum class Technique : std::uint32_t { None, Reference };
+
+const char* to_string(Profile profile) noexcept;
+const char* to_string(Technique technique) noexcept;
+
+// ---------------------------------------------------------------------------------------------
+// Context creation
+// ---------------------------------------------------------------------------------------------
+
+/// Everything Tyndall needs from the host, once.
+///
+/// IMPORTANT: the device must be Vulkan 1.3 (or 1.2 with VK_KHR_dynamic_rendering) and created
+/// with the features `dynamicRendering` and `dualSrcBlend` enabled; Tyndall cannot query which
+/// features the host enabled, so a device without them fails validation, not `create`.
+struct ContextDesc {
+  VkInstance instance = VK_NULL_HANDLE;                       ///< required
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;           ///< required
+  VkDevice device = VK_NULL_HANDLE;                           ///< required
+  PFN_vkGetInstanceProcAddr getInstanceProcAddr = nullptr;    ///< required (physical-device queries)
+  PFN_vkGetDeviceProcAddr getDeviceProcAddr = nullptr;        ///< required (all device calls)
+  std::uint32_t queueFamilyIndex = 0;  ///< family of the queue the host submits Tyndall's work on; needs compute + graphics
+  std::uint32_t maxFramesInFlight = 2; ///< 1..8; number of frames the host records ahead of the GPU
+  VkExtent2D outputExtent{};           ///< size of the depth and back buffers, ≥ 1×1; change it with `resize`
+  VkFormat backBufferFormat = VK_FORMAT_UNDEFINED; ///< optional: composite pipeline built up front for it
+  VkPipelineCache pipelineCache = VK_NULL_HANDLE;             ///< optional
+  const VkAllocationCallbacks* allocator = nullptr;           ///< optional
+  MessageCallback messageCallback = nullptr;                  ///< optional
+  void* messageUserData = nullptr;                            ///< passed back to `messageCallback`
+};
+
+// ---------------------------------------------------------------------------------------------
+// Per-frame description
+// ---------------------------------------------------------------------------------------------
+
+/// Column-major 4×4 matrix (the memory layout of GLM and GLSL), transforming column vectors.
+using Mat4 = std::array<float, 16>;
+using Float3 = std::array<float, 3>;
+
+/// An image the host owns. Tyndall transitions it from `layout` to what it needs and back to
+/// `layout` before `record` returns: the layout on entry is the layout on exit.
+/// IMPORTANT: Tyndall makes every earlier write to the image (any stage) visible before it reads,
+/// and makes its own writes available to every later stage; the host needs no extra barrier.
+struct ImageRef {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;   ///< 2D view of mip 0, layer `arrayLayer` (depth: DEPTH aspect only)
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  std::uint32_t arrayLayer = 0;        ///< the layer of `image` that `view` shows
+  VkExtent2D extent{};
+  VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< current layout; never UNDEFINED for inputs
+
+  [[nodiscard]] bool empty() const noexcept { return image == VK_NULL_HANDLE; }
+};
+
+/// The camera that produced the depth buffer.
+struct CameraDesc {
+  /// World → view. Right-handed view space, camera looking down −Z (GLM's lookAt).
+  Mat4 view{};
+  /// View → clip with clip depth in [0, 1] (Vulkan). Standard or reverse-Z, finite or infinite far:
+  /// all four are detected from the matrix. Perspective only. Any y orientation: Tyndall inverts
+  /// exactly this matrix, so it must be the one the depth buffer was rendered with.
+  Mat4 projection{};
+  /// Distance in scene units to which sky pixels (depth at the far value) integrate when the
+  /// projection's far plane is at infinity. Range (0, ∞), default 1000.
+  float infiniteFarSkyDistance = 1000.0f;
+};
+
+enum class LightType : std::uint32_t {
+  Directional,  ///< uses `direction`; shadowMaps[0] is an orthographic light view
+  Spot,         ///< uses `position`, `direction`, cone angles; shadowMaps[0] a perspective frustum
+  Point,        ///< uses `position`; shadowMaps[0..5] are six 90° perspective frusta (klehm2014 §3.2)
+};
+
+struct LightDesc {
+  LightType type = LightType::Directional;
+  Float3 direction{0.0f, -1.0f, 0.0f};  ///< unit-length not required; the direction light travels (light → scene)
+  Float3 position{0.0f, 0.0f, 0.0f};    ///< scene units (spot, point)
+  Float3 color{1.0f, 1.0f, 1.0f};       ///< linear RGB, each ≥ 0
+  /// Directional: irradiance E (colour · intensity, per scene unit²); spot/point: radiant
+  /// intensity I, attenuated as I / d² · exp(−σ_t d). ≥ 0, default 1.
+  float intensity = 1.0f;
+  float innerConeRadians = 0.5f;  ///< spot: half-angle of full intensity, 0 ≤ inner ≤ outer
+  float outerConeRadians = 0.6f;  ///< spot: half-angle where intensity reaches 0, < π/2
+};
+
+enum class PhaseFunction : std::uint32_t { Isotropic, Rayleigh, HenyeyGreenstein, CornetteShanks };
+
+/// One component of the homogeneous medium. Coefficients per scene unit, linear RGB, each ≥ 0.
+struct MediumComponent {
+  Float3 scattering{0.0f, 0.0f, 0.0f};  ///< σ_s
+  Float3 absorption{0.0f, 0.0f, 0.0f};  ///< σ_a
+  PhaseFunction phase = PhaseFunction::Isotropic;
+  float g = 0.0f;  ///< asymmetry for Henyey–Greenstein and Cornette–Shanks, (−1, 1); > 0 scatters forward
+};
+
+/// Maximum number of medium components per frame.
+inline constexpr std::uint32_t kMaxMediumComponents = 4;
+/// Maximum number of shadow maps (a point light's six frusta).
+inline constexpr std::uint32_t kMaxShadowMaps = 6;
+
+/// A shadow map rendered by the host from the light.
+struct ShadowMapDesc {
+  /// Depth image, square, formats D16_UNORM, D32_SFLOAT, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT or
+  /// D32_SFLOAT_S8_UINT, usage SAMPLED. Depth 0 is nearest the light, 1 the far plane (cleared
+  /// texels at 1 are lit). Points outside a directional map's square are lit; outside a spot's
+  /// frustum they receive no light (keep the frustum around the outer cone).
+  ImageRef depth;
+  /// World → shadow clip space, clip depth in [0, 1], x/y in [−1, 1] over the map; texel (i, j)
+  /// covers u = (x + 1) / 2 ∈ [i / N, (i + 1) / N], v likewise with row j.
+  Mat4 worldToShadowClip{};
+};
+
+struct FrameDesc {
+  CameraDesc camera;
+  LightDesc light;
+  /// 1..kMaxMediumComponents components; they share the path, so σ_t is their sum.
+  std::span<const MediumComponent> medium;
+  /// 1 shadow map for directional and spot lights, 6 for point lights.
+  std::span<const ShadowMapDesc> shadowMaps;
+  /// Host depth buffer, outputExtent, same formats as shadow maps, usage SAMPLED.
+  ImageRef depth;
+  /// Host back buffer (scene-linear HDR or an sRGB format), outputExtent, usage COLOR_ATTACHMENT,
+  /// format with COLOR_ATTACHMENT_BLEND support (e.g. R16G16B16A16_SFLOAT, B8G8R8A8_SRGB).
+  ImageRef color;
+  /// Optional AOV: receives L_in alone. outputExtent, usage TRANSFER_DST, a float colour format
+  /// with BLIT_DST support (R32G32B32A32_SFLOAT keeps full precision). `view` is not used.
+  ImageRef scatteringOutput;
+  /// Optional AOV: receives the view-ray transmittance exp(−σ_t s). Same requirements.
+  ImageRef transmittanceOutput;
+  /// Optional light-colour texture (stained glass). No technique supports it yet: a frame that
+  /// sets it is rejected with UnsupportedFeature.
+  ImageRef lightColor;
+
+  Profile profile = Profile::Balanced;
+  /// GPU-time budget for Profile::Auto in milliseconds, > 0, default 4.
+  float autoBudgetMilliseconds = 4.0f;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Statistics
+// ---------------------------------------------------------------------------------------------
+
+struct PassTiming {
+  std::string name;
+  double milliseconds = 0.0;
+};
+
+/// GPU timings of one earlier frame, read from timestamp queries without waiting.
+struct FrameTimings {
+  std::uint64_t frameIndex = 0;       ///< the value of `Stats::frameIndex` when it was recorded
+  std::vector<PassTiming> passes;     ///< in recording order
+  double totalMilliseconds = 0.0;     ///< first pass start to last pass end
+};
+
+struct Stats {
+  std::uint64_t frameIndex = 0;       ///< frames recorded so far by this context
+  Profile requestedProfile = Profile::Balanced;
+  Technique technique = Technique::None;
+  /// Why that technique ran (e.g. "profile table: Balanced -> Reference until the epipolar
+  /// technique lands"); empty when nothing was recorded.
+  std::string techniqueNote;
+  /// Names of the passes recorded in the last `record` call, in order.
+  std::vector<std::string> passesRecorded;
+  /// Most recent frame whose timestamps were available; `valid` false until one is.
+  FrameTimings lastTimings;
+  bool timingsValid = false;
+  bool timestampsSupported = false;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The context
+// ---------------------------------------------------------------------------------------------
+
+class Context {
+ public:
+  /// Creates pipelines and size-independent resources, then the size-dependent ones for
+  /// `desc.outputExtent`. On failure `out` stays empty and the outcome says why.
+  static Outcome create(const ContextDesc& desc, std::unique_ptr<Context>& out);
+
+  /// IMPORTANT: the host guarantees the GPU no longer uses anything recorded by this context.
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  /// Rebuilds only the size-dependent resources. The host guarantees the GPU no longer uses
+  /// anything recorded by this context (as for destruction).
+  Outcome resize(VkExtent2D outputExtent);
+
+  /// Records this frame's passes into `commandBuffer` (outside any render pass, compute and
+  /// graphics capable queue). Frames use `maxFramesInFlight` slots in turn.
+  /// IMPORTANT: when record is called for frame n, the GPU has finished frame n − maxFramesInFlight
+  /// (the host waited on that frame's fence), as in any frames-in-flight loop.
+  /// An invalid frame records nothing and returns the reason.
+  Outcome record(VkCommandBuffer commandBuffer, const FrameDesc& frame);
+
+  /// Reads the timestamps of frames that have completed since they were recorded, without
+  /// waiting. Call it after the host waited on its fences to pick up the last frames' timings.
+  void collectTimings();
+
+  /// Timings read so far and not yet taken, oldest first; clears the list.
+  std::vector<FrameTimings> takeCompletedTimings();
+
+  [[nodiscard]] const Stats& stats() const noexcept;
+
+  struct Impl;
+
+ private:
+  explicit Context(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tyndall

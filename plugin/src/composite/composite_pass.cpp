@@ -1,0 +1,162 @@
+#include "composite/composite_pass.h"
+
+#include <array>
+
+#include "tyndall_shaders.h"
+
+namespace tyndall {
+
+Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
+  const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
+      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, &nearest},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, &nearest},
+  }};
+  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layoutInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
+  layoutInfo.pBindings = bindings.data();
+  VkResult result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
+
+  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout_;
+  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+
+  if (Outcome o = createShaderModule(gpu, shaders::composite_vert(), vertex_); !o) return o;
+  if (Outcome o = createShaderModule(gpu, shaders::composite_frag(), fragment_); !o) return o;
+
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slots * 2};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = slots;
+  poolInfo.poolSizeCount = 1;
+  poolInfo.pPoolSizes = &size;
+  result = gpu.vk.vkCreateDescriptorPool(gpu.device, &poolInfo, gpu.allocator, &pool_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorPool", result);
+  std::vector<VkDescriptorSetLayout> layouts(slots, setLayout_);
+  sets_.resize(slots);
+  VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  allocInfo.descriptorPool = pool_;
+  allocInfo.descriptorSetCount = slots;
+  allocInfo.pSetLayouts = layouts.data();
+  result = gpu.vk.vkAllocateDescriptorSets(gpu.device, &allocInfo, sets_.data());
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateDescriptorSets", result);
+}
+
+void CompositePass::destroy(const Gpu& gpu) {
+  if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
+  for (auto& [format, pipeline] : pipelines_) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
+  if (fragment_ != VK_NULL_HANDLE) gpu.vk.vkDestroyShaderModule(gpu.device, fragment_, gpu.allocator);
+  if (vertex_ != VK_NULL_HANDLE) gpu.vk.vkDestroyShaderModule(gpu.device, vertex_, gpu.allocator);
+  if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
+  if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
+  *this = CompositePass{};
+}
+
+Outcome CompositePass::ensurePipeline(const Gpu& gpu, VkFormat format) {
+  if (pipelines_.contains(format)) return {};
+
+  std::array<VkPipelineShaderStageCreateInfo, 2> stages{};
+  stages[0] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vertex_;
+  stages[0].pName = "main";
+  stages[1] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = fragment_;
+  stages[1].pName = "main";
+
+  VkPipelineVertexInputStateCreateInfo vertexInput{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo assembly{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  assembly.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo viewport{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  viewport.viewportCount = 1;
+  viewport.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo raster{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  raster.polygonMode = VK_POLYGON_MODE_FILL;
+  raster.cullMode = VK_CULL_MODE_NONE;
+  raster.lineWidth = 1.0f;
+  VkPipelineMultisampleStateCreateInfo multisample{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  multisample.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+
+  // dst.rgb = src0.rgb · 1 + dst.rgb · src1.rgb (= L_in + in · T); alpha untouched.
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.blendEnable = VK_TRUE;
+  blend.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend.dstColorBlendFactor = VK_BLEND_FACTOR_SRC1_COLOR;
+  blend.colorBlendOp = VK_BLEND_OP_ADD;
+  blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+  blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend.alphaBlendOp = VK_BLEND_OP_ADD;
+  blend.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT | VK_COLOR_COMPONENT_B_BIT |
+                         VK_COLOR_COMPONENT_A_BIT;
+  VkPipelineColorBlendStateCreateInfo blendState{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  blendState.attachmentCount = 1;
+  blendState.pAttachments = &blend;
+
+  const std::array<VkDynamicState, 2> dynamicStates{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo dynamic{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamic.dynamicStateCount = static_cast<std::uint32_t>(dynamicStates.size());
+  dynamic.pDynamicStates = dynamicStates.data();
+
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachmentFormats = &format;
+
+  VkGraphicsPipelineCreateInfo info{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  info.pNext = &rendering;
+  info.stageCount = static_cast<std::uint32_t>(stages.size());
+  info.pStages = stages.data();
+  info.pVertexInputState = &vertexInput;
+  info.pInputAssemblyState = &assembly;
+  info.pViewportState = &viewport;
+  info.pRasterizationState = &raster;
+  info.pMultisampleState = &multisample;
+  info.pColorBlendState = &blendState;
+  info.pDynamicState = &dynamic;
+  info.layout = pipelineLayout_;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult result = gpu.vk.vkCreateGraphicsPipelines(gpu.device, gpu.pipelineCache, 1, &info, gpu.allocator, &pipeline);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateGraphicsPipelines", result);
+  pipelines_.emplace(format, pipeline);
+  return {};
+}
+
+void CompositePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkImageView scattering,
+                           VkImageView transmittance, const ImageRef& color, VkImageLayout attachmentLayout) {
+  const VkDescriptorSet set = sets_[slot];
+  const std::array<VkDescriptorImageInfo, 2> images{{
+      {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_GENERAL},
+      {VK_NULL_HANDLE, transmittance, VK_IMAGE_LAYOUT_GENERAL},
+  }};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set;
+  write.dstBinding = 0;
+  write.descriptorCount = 2;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  write.pImageInfo = images.data();
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, 1, &write, 0, nullptr);
+
+  VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  attachment.imageView = color.view;
+  attachment.imageLayout = attachmentLayout;
+  attachment.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+  attachment.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  VkRenderingInfo rendering{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  rendering.renderArea = {{0, 0}, color.extent};
+  rendering.layerCount = 1;
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachments = &attachment;
+  gpu.vk.vkCmdBeginRendering(cmd, &rendering);
+  const VkViewport viewport{0.0f, 0.0f, static_cast<float>(color.extent.width),
+                            static_cast<float>(color.extent.height), 0.0f, 1.0f};
+  const VkRect2D scissor{{0, 0}, color.extent};
+  gpu.vk.vkCmdSetViewport(cmd, 0, 1, &viewport);
+  gpu.vk.vkCmdSetScissor(cmd, 0, 1, &scissor);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelines_.at(color.format));
+  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set, 0, nullptr);
+  gpu.vk.vkCmdDraw(cmd, 3, 1, 0, 0);
+  gpu.vk.vkCmdEndRendering(cmd);
+}
+
+}  // namespace tyndall

@@ -1,0 +1,366 @@
+// The context: what is created once, what is rebuilt on resize, and the per-frame recording.
+#include <array>
+#include <cstring>
+
+#include "composite/composite_pass.h"
+#include "frame_setup.h"
+#include "gpu.h"
+#include "profiles.h"
+#include "reference/reference_pass.h"
+#include "timing.h"
+
+namespace tyndall {
+
+namespace {
+
+// Layout in which a host depth image is sampled: kept when it already allows sampling,
+// otherwise the read-only depth-stencil layout (valid for every depth format).
+VkImageLayout sampledDepthLayout(VkImageLayout entry) {
+  switch (entry) {
+    case VK_IMAGE_LAYOUT_GENERAL:
+    case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL:
+    case VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL:
+    case VK_IMAGE_LAYOUT_DEPTH_READ_ONLY_OPTIMAL:
+      return entry;
+    default:
+      return VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+  }
+}
+
+VkImageLayout keepGeneral(VkImageLayout entry, VkImageLayout wanted) {
+  return entry == VK_IMAGE_LAYOUT_GENERAL ? entry : wanted;
+}
+
+// Whatever the host did before: every earlier write, any stage.
+ImageUse hostBefore(const ImageRef& image) {
+  return {image.layout, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_ACCESS_MEMORY_WRITE_BIT};
+}
+// Whatever the host does after: any access, any stage.
+ImageUse hostAfter(const ImageRef& image) {
+  return {image.layout, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+          VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT};
+}
+
+constexpr VkImageUsageFlags kTargetUsage =
+    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+// L_in and T are kept in full float: the Reference is the validation path and the AOVs are
+// compared against double-precision references.
+constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+}  // namespace
+
+struct Context::Impl {
+  ContextDesc desc;
+  Gpu gpu;
+  VkExtent2D extent{};
+  VkSampler nearest = VK_NULL_HANDLE;
+  std::vector<MappedBuffer> constants;  // one per frame slot
+  GpuTimer timer;
+  ReferencePass reference;
+  CompositePass composite;
+  // Size-dependent.
+  OwnedImage scattering;
+  OwnedImage transmittance;
+  Stats stats;
+
+  void report(Severity severity, const std::string& message) const {
+    if (desc.messageCallback != nullptr) desc.messageCallback(severity, message.c_str(), desc.messageUserData);
+  }
+  Outcome fail(Outcome outcome) const {
+    report(Severity::Error, std::string(to_string(outcome.status)) + ": " + outcome.message);
+    return outcome;
+  }
+
+  Outcome createSizeIndependent();
+  Outcome createSizeDependent();
+  void destroySizeDependent();
+  void destroyAll();
+  Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
+  void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame);
+  void recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets);
+};
+
+Outcome Context::Impl::createSizeIndependent() {
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = VK_FILTER_NEAREST;
+  samplerInfo.minFilter = VK_FILTER_NEAREST;
+  samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkResult result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &nearest);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+
+  constants.resize(desc.maxFramesInFlight);
+  for (MappedBuffer& buffer : constants) {
+    if (Outcome o = createMappedBuffer(gpu, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, buffer); !o) {
+      return o;
+    }
+  }
+  if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
+  stats.timestampsSupported = timer.supported();
+  if (Outcome o = reference.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
+  if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
+  if (desc.backBufferFormat != VK_FORMAT_UNDEFINED) {
+    if ((gpu.optimalFeatures(desc.backBufferFormat) & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) == 0) {
+      return failure(Status::UnsupportedFormat, "backBufferFormat has no COLOR_ATTACHMENT_BLEND support");
+    }
+    if (Outcome o = composite.ensurePipeline(gpu, desc.backBufferFormat); !o) return o;
+  }
+  return {};
+}
+
+Outcome Context::Impl::createSizeDependent() {
+  if (Outcome o = createImage(gpu, kTargetFormat, extent, kTargetUsage, scattering); !o) return o;
+  return createImage(gpu, kTargetFormat, extent, kTargetUsage, transmittance);
+}
+
+void Context::Impl::destroySizeDependent() {
+  destroyImage(gpu, transmittance);
+  destroyImage(gpu, scattering);
+}
+
+// Reverse order of creation.
+void Context::Impl::destroyAll() {
+  if (gpu.device == VK_NULL_HANDLE) return;
+  destroySizeDependent();
+  composite.destroy(gpu);
+  reference.destroy(gpu);
+  timer.destroy(gpu);
+  for (MappedBuffer& buffer : constants) destroyBuffer(gpu, buffer);
+  constants.clear();
+  if (nearest != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, nearest, gpu.allocator);
+  nearest = VK_NULL_HANDLE;
+}
+
+Outcome Context::create(const ContextDesc& desc, std::unique_ptr<Context>& out) {
+  out.reset();
+  auto impl = std::make_unique<Impl>();
+  impl->desc = desc;
+  auto fail = [&](Status status, const std::string& message) {
+    return impl->fail(failure(status, message));
+  };
+  if (desc.instance == VK_NULL_HANDLE || desc.physicalDevice == VK_NULL_HANDLE || desc.device == VK_NULL_HANDLE) {
+    return fail(Status::InvalidArgument, "ContextDesc needs instance, physicalDevice and device");
+  }
+  if (desc.getInstanceProcAddr == nullptr || desc.getDeviceProcAddr == nullptr) {
+    return fail(Status::InvalidArgument, "ContextDesc needs getInstanceProcAddr and getDeviceProcAddr");
+  }
+  if (desc.maxFramesInFlight < 1 || desc.maxFramesInFlight > 8) {
+    return fail(Status::InvalidArgument, "maxFramesInFlight must be in 1..8");
+  }
+  if (desc.outputExtent.width == 0 || desc.outputExtent.height == 0) {
+    return fail(Status::InvalidArgument, "outputExtent must be at least 1x1");
+  }
+
+  Gpu& gpu = impl->gpu;
+  if (const char* missing = gpu.vk.load(desc.instance, desc.device, desc.getInstanceProcAddr, desc.getDeviceProcAddr)) {
+    return fail(Status::UnsupportedFeature, std::string("the device does not provide ") + missing);
+  }
+  gpu.physicalDevice = desc.physicalDevice;
+  gpu.device = desc.device;
+  gpu.pipelineCache = desc.pipelineCache;
+  gpu.allocator = desc.allocator;
+  gpu.vk.vkGetPhysicalDeviceProperties(desc.physicalDevice, &gpu.properties);
+  gpu.vk.vkGetPhysicalDeviceMemoryProperties(desc.physicalDevice, &gpu.memory);
+
+  std::uint32_t familyCount = 0;
+  gpu.vk.vkGetPhysicalDeviceQueueFamilyProperties(desc.physicalDevice, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  gpu.vk.vkGetPhysicalDeviceQueueFamilyProperties(desc.physicalDevice, &familyCount, families.data());
+  const VkQueueFlags needed = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;
+  if (desc.queueFamilyIndex >= familyCount || (families[desc.queueFamilyIndex].queueFlags & needed) != needed) {
+    return fail(Status::InvalidArgument, "queueFamilyIndex must name a graphics and compute queue family");
+  }
+  if (VK_API_VERSION_MINOR(gpu.properties.apiVersion) < 2 && VK_API_VERSION_MAJOR(gpu.properties.apiVersion) == 1) {
+    return fail(Status::UnsupportedFeature, "Tyndall needs a Vulkan 1.2 or later device");
+  }
+
+  impl->extent = desc.outputExtent;
+  Outcome outcome = impl->createSizeIndependent();
+  if (outcome) outcome = impl->createSizeDependent();
+  if (!outcome) {
+    impl->destroyAll();
+    return impl->fail(outcome);
+  }
+  out.reset(new Context(std::move(impl)));
+  return {};
+}
+
+Context::Context(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+Context::~Context() {
+  if (impl_) impl_->destroyAll();
+}
+
+Outcome Context::resize(VkExtent2D outputExtent) {
+  if (outputExtent.width == 0 || outputExtent.height == 0) {
+    return impl_->fail(failure(Status::InvalidArgument, "resize: outputExtent must be at least 1x1"));
+  }
+  if (outputExtent.width == impl_->extent.width && outputExtent.height == impl_->extent.height) return {};
+  impl_->destroySizeDependent();
+  impl_->extent = outputExtent;
+  if (Outcome o = impl_->createSizeDependent(); !o) return impl_->fail(o);
+  return {};
+}
+
+Outcome Context::record(VkCommandBuffer commandBuffer, const FrameDesc& frame) {
+  if (commandBuffer == VK_NULL_HANDLE) {
+    return impl_->fail(failure(Status::InvalidArgument, "record: commandBuffer is null"));
+  }
+  return impl_->record(commandBuffer, frame);
+}
+
+Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
+  FrameSetup setup;
+  if (Outcome o = prepareFrame(gpu, extent, frame, setup); !o) return fail(o);
+  if (setup.attenuates && !composite.hasPipeline(frame.color.format)) {
+    report(Severity::Warning, "composite pipeline for back-buffer format " +
+                                  std::to_string(static_cast<int>(frame.color.format)) +
+                                  " built during record; pass ContextDesc::backBufferFormat to build it up front");
+    if (Outcome o = composite.ensurePipeline(gpu, frame.color.format); !o) return fail(o);
+  }
+
+  const std::uint32_t slot = static_cast<std::uint32_t>(stats.frameIndex % desc.maxFramesInFlight);
+  const ProfileChoice& choice = profileChoice(frame.profile);
+  stats.requestedProfile = frame.profile;
+  stats.passesRecorded.clear();
+  timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
+
+  if (!setup.attenuates) {
+    // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
+    stats.technique = Technique::None;
+    stats.techniqueNote = "medium has no extinction: the back buffer is left as it is";
+    recordAovs(cmd, frame, false);
+  } else {
+    stats.technique = choice.technique;
+    stats.techniqueNote = choice.note;
+    std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
+    recordScattering(cmd, slot, frame);
+    recordAovs(cmd, frame, true);
+  }
+
+  if (const FrameTimings* latest = timer.latest()) {
+    stats.lastTimings = *latest;
+    stats.timingsValid = true;
+  }
+  ++stats.frameIndex;
+  return {};
+}
+
+void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame) {
+  const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+
+  // Tyndall's targets: the previous frame's reads must finish before they are overwritten;
+  // the old contents are discarded.
+  for (const OwnedImage* target : {&scattering, &transmittance}) {
+    imageBarrier(gpu, cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                 {VK_IMAGE_LAYOUT_UNDEFINED, readers, 0},
+                 {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
+  }
+
+  // Host inputs: depth buffer and shadow maps, sampled by the compute pass.
+  ReferencePass::Bindings bindings;
+  bindings.constants = constants[slot].buffer;
+  bindings.depth = frame.depth.view;
+  bindings.depthLayout = sampledDepthLayout(frame.depth.layout);
+  bindings.scattering = scattering.view;
+  bindings.transmittance = transmittance.view;
+  auto acquireDepth = [&](const ImageRef& image, VkImageLayout layout) {
+    imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, hostBefore(image),
+                 {layout, compute, VK_ACCESS_SHADER_READ_BIT});
+  };
+  auto releaseDepth = [&](const ImageRef& image, VkImageLayout layout) {
+    imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, {layout, compute, 0},
+                 hostAfter(image));
+  };
+  acquireDepth(frame.depth, bindings.depthLayout);
+  for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
+    const ImageRef& map = frame.shadowMaps[i].depth;
+    bindings.shadowMaps[i] = map.view;
+    bindings.shadowLayouts[i] = sampledDepthLayout(map.layout);
+    acquireDepth(map, bindings.shadowLayouts[i]);
+  }
+
+  timer.beginPass(gpu, cmd, "reference_scattering");
+  reference.record(gpu, cmd, slot, bindings, extent);
+  timer.endPass(gpu, cmd);
+  stats.passesRecorded.emplace_back("reference_scattering");
+
+  releaseDepth(frame.depth, bindings.depthLayout);
+  for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
+    releaseDepth(frame.shadowMaps[i].depth, bindings.shadowLayouts[i]);
+  }
+  for (const OwnedImage* target : {&scattering, &transmittance}) {
+    imageBarrier(gpu, cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                 {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
+                 {VK_IMAGE_LAYOUT_GENERAL, readers, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT});
+  }
+
+  // Composite into the back buffer.
+  const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const VkPipelineStageFlags output = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const VkAccessFlags blend = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
+               hostBefore(frame.color), {attachment, output, blend});
+  timer.beginPass(gpu, cmd, "composite");
+  composite.record(gpu, cmd, slot, scattering.view, transmittance.view, frame.color, attachment);
+  timer.endPass(gpu, cmd);
+  stats.passesRecorded.emplace_back("composite");
+  imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
+               {attachment, output, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT}, hostAfter(frame.color));
+}
+
+// Copies L_in and T to the host's AOV images (blit: converts to their format), or, when
+// nothing was computed, clears them to L_in = 0 and T = 1.
+void Context::Impl::recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets) {
+  const std::array<std::pair<const ImageRef*, const OwnedImage*>, 2> outputs{{
+      {&frame.scatteringOutput, &scattering},
+      {&frame.transmittanceOutput, &transmittance},
+  }};
+  if (frame.scatteringOutput.empty() && frame.transmittanceOutput.empty()) return;
+
+  const char* pass = fromTargets ? "aov_output" : "aov_clear";
+  timer.beginPass(gpu, cmd, pass);
+  for (const auto& [output, source] : outputs) {
+    if (output->empty()) continue;
+    const VkImageLayout layout = keepGeneral(output->layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const ImageUse transferWrite{layout, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
+    imageBarrier(gpu, cmd, output->image, VK_IMAGE_ASPECT_COLOR_BIT, output->arrayLayer, hostBefore(*output),
+                 transferWrite);
+    const VkImageSubresourceLayers dstLayers{VK_IMAGE_ASPECT_COLOR_BIT, 0, output->arrayLayer, 1};
+    if (fromTargets) {
+      VkImageBlit region{};
+      region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
+      region.dstSubresource = dstLayers;
+      region.dstOffsets[1] = region.srcOffsets[1];
+      gpu.vk.vkCmdBlitImage(cmd, source->image, VK_IMAGE_LAYOUT_GENERAL, output->image, layout, 1, &region,
+                            VK_FILTER_NEAREST);
+    } else {
+      const float value = source == &scattering ? 0.0f : 1.0f;
+      const VkClearColorValue clear{{value, value, value, 1.0f}};
+      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, output->arrayLayer, 1};
+      gpu.vk.vkCmdClearColorImage(cmd, output->image, layout, &clear, 1, &range);
+    }
+    imageBarrier(gpu, cmd, output->image, VK_IMAGE_ASPECT_COLOR_BIT, output->arrayLayer, transferWrite,
+                 hostAfter(*output));
+  }
+  timer.endPass(gpu, cmd);
+  stats.passesRecorded.emplace_back(pass);
+}
+
+void Context::collectTimings() {
+  impl_->timer.harvestAll(impl_->gpu);
+  if (const FrameTimings* latest = impl_->timer.latest()) {
+    impl_->stats.lastTimings = *latest;
+    impl_->stats.timingsValid = true;
+  }
+}
+
+std::vector<FrameTimings> Context::takeCompletedTimings() { return impl_->timer.takeCompleted(); }
+
+const Stats& Context::stats() const noexcept { return impl_->stats; }
+
+}  // namespace tyndall

@@ -1,0 +1,227 @@
+#include "frame_setup.h"
+
+#include <cmath>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace tyndall {
+
+static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 16 + 4 * 16 + 3 * 16,
+              "FrameConstants must match its std140 layout");
+static_assert(kMaxMediumComponents == gpu::TYN_MAX_MEDIUM_COMPONENTS);
+static_assert(kMaxShadowMaps == gpu::TYN_MAX_SHADOW_MAPS);
+
+namespace {
+
+bool finite(const Float3& v) {
+  return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]);
+}
+bool nonNegative(const Float3& v) { return v[0] >= 0.0f && v[1] >= 0.0f && v[2] >= 0.0f; }
+glm::dvec3 toVec(const Float3& v) { return {v[0], v[1], v[2]}; }
+
+glm::dmat4 toMat(const Mat4& m) { return glm::dmat4(glm::make_mat4(m.data())); }
+
+bool finite(const Mat4& m) {
+  for (float x : m) {
+    if (!std::isfinite(x)) return false;
+  }
+  return true;
+}
+
+// A matrix is usable when finite and its determinant is not negligible against its scale.
+bool invertible(const glm::dmat4& m) {
+  double scale = 0.0;
+  for (int c = 0; c < 4; ++c) scale = std::max(scale, glm::length(m[c]));
+  const double det = glm::determinant(m);
+  return std::isfinite(det) && std::abs(det) > 1e-12 * std::pow(scale, 4.0);
+}
+
+Outcome invalid(std::string message) { return failure(Status::InvalidArgument, std::move(message)); }
+
+// Checks an image's handles, extent and layout. Formats are checked by the caller. Outputs
+// written by transfer need no view.
+Outcome checkImage(const ImageRef& image, const char* name, bool needsView = true) {
+  if (image.image == VK_NULL_HANDLE || (needsView && image.view == VK_NULL_HANDLE)) {
+    return invalid(std::string(name) + (needsView ? " has a null image or view" : " has a null image"));
+  }
+  if (image.extent.width == 0 || image.extent.height == 0) {
+    return invalid(std::string(name) + " has a zero extent");
+  }
+  if (image.layout == VK_IMAGE_LAYOUT_UNDEFINED || image.layout == VK_IMAGE_LAYOUT_PREINITIALIZED) {
+    return invalid(std::string(name) + ".layout must be its current layout, not UNDEFINED/PREINITIALIZED");
+  }
+  return {};
+}
+
+Outcome checkSampledDepth(const Gpu& gpu, const ImageRef& image, const char* name) {
+  if (Outcome o = checkImage(image, name); !o) return o;
+  if (!isDepthFormat(image.format) ||
+      (gpu.optimalFeatures(image.format) & VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) == 0) {
+    return failure(Status::UnsupportedFormat,
+                   std::string(name) + " must be a sampled depth format (D16, D32, X8_D24, D24S8, D32S8), got VkFormat " +
+                       std::to_string(static_cast<int>(image.format)));
+  }
+  return {};
+}
+
+Outcome checkExtent(const ImageRef& image, VkExtent2D extent, const char* name) {
+  if (image.extent.width != extent.width || image.extent.height != extent.height) {
+    return invalid(std::string(name) + " is " + std::to_string(image.extent.width) + "x" +
+                   std::to_string(image.extent.height) + " but the context's output extent is " +
+                   std::to_string(extent.width) + "x" + std::to_string(extent.height) + " (call resize)");
+  }
+  return {};
+}
+
+Outcome checkOutputImage(const Gpu& gpu, const ImageRef& image, VkExtent2D extent, const char* name) {
+  if (image.empty()) return {};
+  if (Outcome o = checkImage(image, name, false); !o) return o;
+  if (Outcome o = checkExtent(image, extent, name); !o) return o;
+  if ((gpu.optimalFeatures(image.format) & VK_FORMAT_FEATURE_BLIT_DST_BIT) == 0 || isDepthFormat(image.format)) {
+    return failure(Status::UnsupportedFormat, std::string(name) + " needs a colour format with BLIT_DST support");
+  }
+  return {};
+}
+
+Outcome checkLight(const LightDesc& light, std::uint32_t shadowMapCount) {
+  if (!finite(light.color) || !nonNegative(light.color)) return invalid("light.color must be finite and >= 0");
+  if (!std::isfinite(light.intensity) || light.intensity < 0.0f) return invalid("light.intensity must be finite and >= 0");
+  const bool needsDirection = light.type == LightType::Directional || light.type == LightType::Spot;
+  if (needsDirection && (!finite(light.direction) || glm::length(toVec(light.direction)) == 0.0)) {
+    return invalid("light.direction must be finite and non-zero");
+  }
+  if (light.type != LightType::Directional && !finite(light.position)) {
+    return invalid("light.position must be finite");
+  }
+  if (light.type == LightType::Spot) {
+    const float inner = light.innerConeRadians;
+    const float outer = light.outerConeRadians;
+    if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0.0f || inner > outer ||
+        outer >= 1.5707963f) {
+      return invalid("light cone angles must satisfy 0 <= inner <= outer < pi/2");
+    }
+  }
+  switch (light.type) {
+    case LightType::Directional:
+    case LightType::Spot:
+      if (shadowMapCount != 1) return invalid("a directional or spot light needs exactly 1 shadow map");
+      break;
+    case LightType::Point:
+      if (shadowMapCount != 6) return invalid("a point light needs exactly 6 shadow maps (cube faces)");
+      break;
+    default:
+      return invalid("light.type is not a LightType");
+  }
+  return {};
+}
+
+Outcome checkMedium(std::span<const MediumComponent> medium) {
+  if (medium.empty() || medium.size() > kMaxMediumComponents) {
+    return invalid("medium needs 1 to " + std::to_string(kMaxMediumComponents) + " components");
+  }
+  for (std::size_t i = 0; i < medium.size(); ++i) {
+    const MediumComponent& c = medium[i];
+    const std::string name = "medium[" + std::to_string(i) + "]";
+    if (!finite(c.scattering) || !nonNegative(c.scattering)) return invalid(name + ".scattering must be finite and >= 0");
+    if (!finite(c.absorption) || !nonNegative(c.absorption)) return invalid(name + ".absorption must be finite and >= 0");
+    if (static_cast<std::uint32_t>(c.phase) > static_cast<std::uint32_t>(PhaseFunction::CornetteShanks)) {
+      return invalid(name + ".phase is not a PhaseFunction");
+    }
+    if (!std::isfinite(c.g) || c.g <= -1.0f || c.g >= 1.0f) return invalid(name + ".g must be in (-1, 1)");
+  }
+  return {};
+}
+
+}  // namespace
+
+Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& frame,
+                     FrameSetup& out) {
+  out = FrameSetup{};
+  if (static_cast<std::uint32_t>(frame.profile) > static_cast<std::uint32_t>(Profile::Auto)) {
+    return invalid("profile is not a Profile");
+  }
+  if (!std::isfinite(frame.autoBudgetMilliseconds) || frame.autoBudgetMilliseconds <= 0.0f) {
+    return invalid("autoBudgetMilliseconds must be finite and > 0");
+  }
+
+  // Camera.
+  if (!finite(frame.camera.view) || !invertible(toMat(frame.camera.view))) {
+    return invalid("camera.view must be finite and invertible");
+  }
+  const glm::dmat4 projection = toMat(frame.camera.projection);
+  if (Outcome o = analyzeProjection(projection, out.projection); !o) return o;
+  if (out.projection.infiniteFar &&
+      (!std::isfinite(frame.camera.infiniteFarSkyDistance) || frame.camera.infiniteFarSkyDistance <= 0.0f)) {
+    return invalid("camera.infiniteFarSkyDistance must be finite and > 0 with an infinite far plane");
+  }
+
+  if (Outcome o = checkLight(frame.light, static_cast<std::uint32_t>(frame.shadowMaps.size())); !o) return o;
+  if (Outcome o = checkMedium(frame.medium); !o) return o;
+
+  // Images.
+  if (Outcome o = checkSampledDepth(gpu, frame.depth, "depth"); !o) return o;
+  if (Outcome o = checkExtent(frame.depth, outputExtent, "depth"); !o) return o;
+  if (Outcome o = checkImage(frame.color, "color"); !o) return o;
+  if (Outcome o = checkExtent(frame.color, outputExtent, "color"); !o) return o;
+  if ((gpu.optimalFeatures(frame.color.format) & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) == 0) {
+    return failure(Status::UnsupportedFormat,
+                   "color must be a format with COLOR_ATTACHMENT_BLEND support, got VkFormat " +
+                       std::to_string(static_cast<int>(frame.color.format)));
+  }
+  if (Outcome o = checkOutputImage(gpu, frame.scatteringOutput, outputExtent, "scatteringOutput"); !o) return o;
+  if (Outcome o = checkOutputImage(gpu, frame.transmittanceOutput, outputExtent, "transmittanceOutput"); !o) return o;
+  if (!frame.lightColor.empty()) {
+    return failure(Status::UnsupportedFeature, "lightColor: no technique supports a light-colour texture yet");
+  }
+  const std::uint32_t mapSize = frame.shadowMaps.empty() ? 0 : frame.shadowMaps[0].depth.extent.width;
+  for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
+    const ShadowMapDesc& map = frame.shadowMaps[i];
+    const std::string name = "shadowMaps[" + std::to_string(i) + "]";
+    if (Outcome o = checkSampledDepth(gpu, map.depth, (name + ".depth").c_str()); !o) return o;
+    if (map.depth.extent.width != map.depth.extent.height || map.depth.extent.width != mapSize) {
+      return invalid(name + ".depth must be square and all shadow maps the same size");
+    }
+    if (!finite(map.worldToShadowClip) || !invertible(toMat(map.worldToShadowClip))) {
+      return invalid(name + ".worldToShadowClip must be finite and invertible");
+    }
+  }
+
+  // Constants.
+  gpu::FrameConstants& k = out.constants;
+  k.view_to_world = glm::mat4(glm::inverse(toMat(frame.camera.view)));
+  k.clip_to_view = glm::mat4(glm::inverse(projection));
+  for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
+    k.world_to_shadow[i] = glm::make_mat4(frame.shadowMaps[i].worldToShadowClip.data());
+  }
+  const LightDesc& light = frame.light;
+  const glm::vec3 direction =
+      light.type == LightType::Point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::vec3(glm::normalize(toVec(light.direction)));
+  k.light_position = glm::vec4(toVec(light.position), 0.0f);
+  k.light_direction = glm::vec4(direction, std::cos(light.outerConeRadians));
+  k.light_radiance = glm::vec4(glm::vec3(toVec(light.color)) * light.intensity, std::cos(light.innerConeRadians));
+
+  glm::vec3 extinction(0.0f);
+  glm::vec3 scattering(0.0f);
+  for (std::size_t i = 0; i < frame.medium.size(); ++i) {
+    const MediumComponent& c = frame.medium[i];
+    const glm::vec3 sigmaS = glm::vec3(toVec(c.scattering));
+    extinction += sigmaS + glm::vec3(toVec(c.absorption));
+    scattering += sigmaS;
+    k.scattering[i] = glm::vec4(sigmaS, c.g);
+    k.phase_type[i] = glm::uvec4(static_cast<std::uint32_t>(c.phase), 0u, 0u, 0u);
+  }
+  k.extinction = glm::vec4(extinction, 0.0f);
+  k.depth_params = glm::vec4(out.projection.nearNdc, out.projection.farNdc,
+                             out.projection.infiniteFar ? 1.0f : 0.0f,
+                             frame.camera.infiniteFarSkyDistance);
+  k.counts = glm::uvec4(static_cast<std::uint32_t>(light.type), static_cast<std::uint32_t>(frame.medium.size()),
+                        static_cast<std::uint32_t>(frame.shadowMaps.size()), mapSize);
+  const bool lightOn = light.intensity > 0.0f && glm::length(glm::vec3(toVec(light.color))) > 0.0f;
+  out.scatters = lightOn && glm::length(scattering) > 0.0f;
+  out.attenuates = glm::length(extinction) > 0.0f;
+  k.extent = glm::uvec4(outputExtent.width, outputExtent.height, out.scatters ? 1u : 0u, 0u);
+  return {};
+}
+
+}  // namespace tyndall

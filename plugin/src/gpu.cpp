@@ -1,0 +1,175 @@
+#include "gpu.h"
+
+namespace tyndall {
+
+VkFormatFeatureFlags Gpu::optimalFeatures(VkFormat format) const {
+  VkFormatProperties props{};
+  vk.vkGetPhysicalDeviceFormatProperties(physicalDevice, format, &props);
+  return props.optimalTilingFeatures;
+}
+
+Outcome vkFailed(const char* call, VkResult result) {
+  Outcome outcome;
+  outcome.status = Status::VulkanError;
+  outcome.vkResult = result;
+  outcome.message = std::string(call) + " failed with VkResult " + std::to_string(static_cast<int>(result));
+  return outcome;
+}
+
+Outcome failure(Status status, std::string message) {
+  Outcome outcome;
+  outcome.status = status;
+  outcome.message = std::move(message);
+  return outcome;
+}
+
+namespace {
+
+bool findMemoryType(const Gpu& gpu, std::uint32_t typeBits, VkMemoryPropertyFlags wanted,
+                    std::uint32_t& index) {
+  for (std::uint32_t i = 0; i < gpu.memory.memoryTypeCount; ++i) {
+    if ((typeBits & (1u << i)) != 0 &&
+        (gpu.memory.memoryTypes[i].propertyFlags & wanted) == wanted) {
+      index = i;
+      return true;
+    }
+  }
+  return false;
+}
+
+Outcome allocate(const Gpu& gpu, const VkMemoryRequirements& requirements,
+                 VkMemoryPropertyFlags wanted, VkDeviceMemory& memory) {
+  std::uint32_t type = 0;
+  if (!findMemoryType(gpu, requirements.memoryTypeBits, wanted, type)) {
+    return failure(Status::UnsupportedFeature, "no memory type with the required properties");
+  }
+  VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  info.allocationSize = requirements.size;
+  info.memoryTypeIndex = type;
+  VkResult result = gpu.vk.vkAllocateMemory(gpu.device, &info, gpu.allocator, &memory);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateMemory", result);
+}
+
+}  // namespace
+
+Outcome createImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, VkImageUsageFlags usage,
+                    OwnedImage& out) {
+  out.format = format;
+  out.extent = extent;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {extent.width, extent.height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = 1;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkResult result = gpu.vk.vkCreateImage(gpu.device, &info, gpu.allocator, &out.image);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateImage", result);
+
+  VkMemoryRequirements requirements{};
+  gpu.vk.vkGetImageMemoryRequirements(gpu.device, out.image, &requirements);
+  Outcome outcome = allocate(gpu, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, out.memory);
+  if (!outcome) return outcome;
+  out.bytes = requirements.size;
+  result = gpu.vk.vkBindImageMemory(gpu.device, out.image, out.memory, 0);
+  if (result != VK_SUCCESS) return vkFailed("vkBindImageMemory", result);
+
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = out.image;
+  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  view.format = format;
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  result = gpu.vk.vkCreateImageView(gpu.device, &view, gpu.allocator, &out.view);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateImageView", result);
+}
+
+void destroyImage(const Gpu& gpu, OwnedImage& image) {
+  if (image.view != VK_NULL_HANDLE) gpu.vk.vkDestroyImageView(gpu.device, image.view, gpu.allocator);
+  if (image.image != VK_NULL_HANDLE) gpu.vk.vkDestroyImage(gpu.device, image.image, gpu.allocator);
+  if (image.memory != VK_NULL_HANDLE) gpu.vk.vkFreeMemory(gpu.device, image.memory, gpu.allocator);
+  image = OwnedImage{};
+}
+
+Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage,
+                           MappedBuffer& out) {
+  out.size = size;
+  VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  info.size = size;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VkResult result = gpu.vk.vkCreateBuffer(gpu.device, &info, gpu.allocator, &out.buffer);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateBuffer", result);
+  VkMemoryRequirements requirements{};
+  gpu.vk.vkGetBufferMemoryRequirements(gpu.device, out.buffer, &requirements);
+  Outcome outcome = allocate(gpu, requirements,
+                             VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                             out.memory);
+  if (!outcome) return outcome;
+  result = gpu.vk.vkBindBufferMemory(gpu.device, out.buffer, out.memory, 0);
+  if (result != VK_SUCCESS) return vkFailed("vkBindBufferMemory", result);
+  result = gpu.vk.vkMapMemory(gpu.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkMapMemory", result);
+}
+
+void destroyBuffer(const Gpu& gpu, MappedBuffer& buffer) {
+  if (buffer.buffer != VK_NULL_HANDLE) gpu.vk.vkDestroyBuffer(gpu.device, buffer.buffer, gpu.allocator);
+  if (buffer.memory != VK_NULL_HANDLE) gpu.vk.vkFreeMemory(gpu.device, buffer.memory, gpu.allocator);
+  buffer = MappedBuffer{};
+}
+
+void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                  std::uint32_t layer, ImageUse from, ImageUse to) {
+  VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  barrier.srcAccessMask = from.access;
+  barrier.dstAccessMask = to.access;
+  barrier.oldLayout = from.layout;
+  barrier.newLayout = to.layout;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {aspect, 0, 1, layer, 1};
+  gpu.vk.vkCmdPipelineBarrier(cmd, from.stage, to.stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
+}
+
+bool isDepthFormat(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+      return true;
+    default:
+      return false;
+  }
+}
+
+VkImageAspectFlags barrierAspect(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_D16_UNORM:
+    case VK_FORMAT_D32_SFLOAT:
+    case VK_FORMAT_X8_D24_UNORM_PACK32:
+      return VK_IMAGE_ASPECT_DEPTH_BIT;
+    case VK_FORMAT_D24_UNORM_S8_UINT:
+    case VK_FORMAT_D32_SFLOAT_S8_UINT:
+      // Without separateDepthStencilLayouts a layout transition must name both aspects.
+      return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+    default:
+      return VK_IMAGE_ASPECT_COLOR_BIT;
+  }
+}
+
+Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
+                           VkShaderModule& out) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = spirv.size_bytes();
+  info.pCode = spirv.data();
+  VkResult result = gpu.vk.vkCreateShaderModule(gpu.device, &info, gpu.allocator, &out);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateShaderModule", result);
+}
+
+}  // namespace tyndall

@@ -1,0 +1,73 @@
+// Small Vulkan building blocks shared by the passes: the device a context works with, images
+// and buffers with their memory, barriers, and pipelines from embedded SPIR-V.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+
+#include "tyndall/tyndall.h"
+#include "vk_dispatch.h"
+
+namespace tyndall {
+
+struct Gpu {
+  Dispatch vk;
+  VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+  VkDevice device = VK_NULL_HANDLE;
+  VkPipelineCache pipelineCache = VK_NULL_HANDLE;
+  const VkAllocationCallbacks* allocator = nullptr;
+  VkPhysicalDeviceProperties properties{};
+  VkPhysicalDeviceMemoryProperties memory{};
+
+  VkFormatFeatureFlags optimalFeatures(VkFormat format) const;
+};
+
+/// An outcome for a failed Vulkan call, e.g. vkFailed("vkCreateImage", VK_ERROR_...).
+Outcome vkFailed(const char* call, VkResult result);
+/// An outcome with a status and message.
+Outcome failure(Status status, std::string message);
+
+/// A device-local image owned by Tyndall (size-dependent intermediate targets).
+struct OwnedImage {
+  VkImage image = VK_NULL_HANDLE;
+  VkImageView view = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{};
+  VkDeviceSize bytes = 0;
+};
+Outcome createImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, VkImageUsageFlags usage,
+                    OwnedImage& out);
+void destroyImage(const Gpu& gpu, OwnedImage& image);
+
+/// A persistently mapped, host-coherent buffer (per-frame constants).
+struct MappedBuffer {
+  VkBuffer buffer = VK_NULL_HANDLE;
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  void* mapped = nullptr;
+  VkDeviceSize size = 0;
+};
+Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage,
+                           MappedBuffer& out);
+void destroyBuffer(const Gpu& gpu, MappedBuffer& buffer);
+
+/// How an image is used at one point of the command stream.
+struct ImageUse {
+  VkImageLayout layout;
+  VkPipelineStageFlags stage;
+  VkAccessFlags access;
+};
+
+/// Whole-image barrier (mip 0, one layer) from one use to the next.
+void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
+                  std::uint32_t layer, ImageUse from, ImageUse to);
+
+/// Aspect flags to name in barriers for a format (depth-stencil formats need both).
+VkImageAspectFlags barrierAspect(VkFormat format);
+bool isDepthFormat(VkFormat format);
+
+Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
+                           VkShaderModule& out);
+
+}  // namespace tyndall

@@ -1,0 +1,20 @@
+// The profile table: which technique and parameters each quality profile uses. Data, not code
+// paths (FidelityFX's quality-mode tables); docs/TRADEOFFS.md will justify each row by
+// measurement once there is more than one technique to choose from.
+#pragma once
+
+#include "tyndall/tyndall.h"
+
+namespace tyndall {
+
+struct ProfileChoice {
+  Profile profile;
+  Technique technique;
+  /// Why, in one line, for the stats.
+  const char* note;
+};
+
+/// The row for a profile (Auto resolves like the others until it has measurements to use).
+const ProfileChoice& profileChoice(Profile profile);
+
+}  // namespace tyndall

@@ -1,0 +1,111 @@
+#include "reference/reference_pass.h"
+
+#include "common/shared_constants.h"
+#include "tyndall_shaders.h"
+
+namespace tyndall {
+
+Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
+  const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
+  const std::array<VkDescriptorSetLayoutBinding, 5> bindings{{
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
+      {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+  }};
+  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layoutInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
+  layoutInfo.pBindings = bindings.data();
+  VkResult result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
+
+  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout_;
+  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+
+  VkShaderModule module = VK_NULL_HANDLE;
+  if (Outcome o = createShaderModule(gpu, shaders::reference_scattering_comp(), module); !o) return o;
+  VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  pipelineInfo.stage.module = module;
+  pipelineInfo.stage.pName = "main";
+  pipelineInfo.layout = pipelineLayout_;
+  result = gpu.vk.vkCreateComputePipelines(gpu.device, gpu.pipelineCache, 1, &pipelineInfo, gpu.allocator, &pipeline_);
+  gpu.vk.vkDestroyShaderModule(gpu.device, module, gpu.allocator);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateComputePipelines", result);
+
+  const std::array<VkDescriptorPoolSize, 3> sizes{{
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slots},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slots * (1 + kMaxShadowMaps)},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, slots * 2},
+  }};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = slots;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  poolInfo.pPoolSizes = sizes.data();
+  result = gpu.vk.vkCreateDescriptorPool(gpu.device, &poolInfo, gpu.allocator, &pool_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorPool", result);
+
+  std::vector<VkDescriptorSetLayout> layouts(slots, setLayout_);
+  sets_.resize(slots);
+  VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  allocInfo.descriptorPool = pool_;
+  allocInfo.descriptorSetCount = slots;
+  allocInfo.pSetLayouts = layouts.data();
+  result = gpu.vk.vkAllocateDescriptorSets(gpu.device, &allocInfo, sets_.data());
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateDescriptorSets", result);
+}
+
+void ReferencePass::destroy(const Gpu& gpu) {
+  if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
+  if (pipeline_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline_, gpu.allocator);
+  if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
+  if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
+  *this = ReferencePass{};
+}
+
+void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& b,
+                           VkExtent2D extent) {
+  const VkDescriptorSet set = sets_[slot];
+  const VkDescriptorBufferInfo constants{b.constants, 0, sizeof(gpu::FrameConstants)};
+  const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
+  std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow{};
+  for (std::uint32_t i = 0; i < kMaxShadowMaps; ++i) {
+    // Unused array elements repeat map 0: every element must be valid without partiallyBound.
+    const bool used = b.shadowMaps[i] != VK_NULL_HANDLE;
+    shadow[i] = {VK_NULL_HANDLE, used ? b.shadowMaps[i] : b.shadowMaps[0],
+                 used ? b.shadowLayouts[i] : b.shadowLayouts[0]};
+  }
+  const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo transmittance{VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL};
+
+  auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) {
+    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = count;
+    w.descriptorType = type;
+    return w;
+  };
+  std::array<VkWriteDescriptorSet, 5> writes{
+      write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1), write(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1),
+      write(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps),
+      write(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1), write(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1)};
+  writes[0].pBufferInfo = &constants;
+  writes[1].pImageInfo = &depth;
+  writes[2].pImageInfo = shadow.data();
+  writes[3].pImageInfo = &scattering;
+  writes[4].pImageInfo = &transmittance;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
+  const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
+  gpu.vk.vkCmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
+}
+
+}  // namespace tyndall

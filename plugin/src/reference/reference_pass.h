@@ -1,0 +1,38 @@
+// The Reference technique: brute force per pixel, texel by texel through the shadow map
+// (shaders/reference/). Writes L_in and the view-ray transmittance to Tyndall's targets.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "gpu.h"
+
+namespace tyndall {
+
+class ReferencePass {
+ public:
+  struct Bindings {
+    VkBuffer constants = VK_NULL_HANDLE;
+    VkImageView depth = VK_NULL_HANDLE;
+    VkImageLayout depthLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    std::array<VkImageView, kMaxShadowMaps> shadowMaps{};
+    std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
+    VkImageView scattering = VK_NULL_HANDLE;     ///< storage, GENERAL
+    VkImageView transmittance = VK_NULL_HANDLE;  ///< storage, GENERAL
+  };
+
+  Outcome create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots);
+  void destroy(const Gpu& gpu);
+  /// Updates the slot's descriptors and dispatches one thread per pixel.
+  void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
+              VkExtent2D extent);
+
+ private:
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> sets_;
+};
+
+}  // namespace tyndall

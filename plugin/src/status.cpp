@@ -1,0 +1,35 @@
+#include "tyndall/tyndall.h"
+
+namespace tyndall {
+
+const char* to_string(Status status) noexcept {
+  switch (status) {
+    case Status::Success: return "Success";
+    case Status::InvalidArgument: return "InvalidArgument";
+    case Status::UnsupportedFormat: return "UnsupportedFormat";
+    case Status::UnsupportedFeature: return "UnsupportedFeature";
+    case Status::VulkanError: return "VulkanError";
+  }
+  return "Unknown";
+}
+
+const char* to_string(Profile profile) noexcept {
+  switch (profile) {
+    case Profile::Reference: return "reference";
+    case Profile::High: return "high";
+    case Profile::Balanced: return "balanced";
+    case Profile::Performance: return "performance";
+    case Profile::Auto: return "auto";
+  }
+  return "unknown";
+}
+
+const char* to_string(Technique technique) noexcept {
+  switch (technique) {
+    case Technique::None: return "none";
+    case Technique::Reference: return "reference";
+  }
+  return "unknown";
+}
+
+}  // namespace tyndall

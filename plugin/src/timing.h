@@ -1,0 +1,51 @@
+// Per-pass GPU timings from timestamp queries. Each frame slot has its own range of queries; a
+// slot's results are read when the slot comes round again (the host has waited for that frame
+// by then), so reading never stalls.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpu.h"
+
+namespace tyndall {
+
+class GpuTimer {
+ public:
+  /// Up to this many timed passes per frame.
+  static constexpr std::uint32_t kMaxPasses = 8;
+
+  Outcome create(const Gpu& gpu, std::uint32_t slots, std::uint32_t queueFamilyIndex);
+  void destroy(const Gpu& gpu);
+  [[nodiscard]] bool supported() const { return pool_ != VK_NULL_HANDLE; }
+
+  /// Reads the slot's previous frame (if any), then resets its queries for a new frame.
+  void beginFrame(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, std::uint64_t frameIndex);
+  void beginPass(const Gpu& gpu, VkCommandBuffer cmd, const char* name);
+  void endPass(const Gpu& gpu, VkCommandBuffer cmd);
+
+  /// Reads every slot whose results are available, without waiting.
+  void harvestAll(const Gpu& gpu);
+  std::vector<FrameTimings> takeCompleted();
+  [[nodiscard]] const FrameTimings* latest() const { return haveLatest_ ? &latest_ : nullptr; }
+
+ private:
+  struct Slot {
+    bool pending = false;
+    std::uint64_t frameIndex = 0;
+    std::vector<std::string> passes;
+  };
+  bool harvest(const Gpu& gpu, std::uint32_t slot);
+
+  VkQueryPool pool_ = VK_NULL_HANDLE;
+  double nanosecondsPerTick_ = 1.0;
+  std::uint64_t validMask_ = ~0ull;
+  std::vector<Slot> slots_;
+  std::uint32_t current_ = 0;
+  std::vector<FrameTimings> completed_;
+  FrameTimings latest_;
+  bool haveLatest_ = false;
+};
+
+}  // namespace tyndall

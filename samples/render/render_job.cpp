@@ -1,0 +1,293 @@
+#include "render_job.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <nlohmann/json.hpp>
+
+#include "tyndall_effect.h"
+
+namespace tyndall::samples {
+
+namespace {
+
+bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
+  std::uint32_t value = 0;
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end || value < minimum || value > maximum) return false;
+  out = value;
+  return true;
+}
+
+bool parseProfile(const std::string& name, Profile& out) {
+  for (Profile p : {Profile::Reference, Profile::High, Profile::Balanced, Profile::Performance, Profile::Auto}) {
+    if (name == to_string(p)) {
+      out = p;
+      return true;
+    }
+  }
+  return false;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+}  // namespace
+
+std::string usage() {
+  return "usage: tyndall-render SCENE.json [--profile reference|high|balanced|performance|auto]\n"
+         "         [--technique reference] [--width W] [--height H] [--shadow-map-size N]\n"
+         "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
+         "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
+         "         [--reverse-z] [--infinite-far] [--validation]\n";
+}
+
+bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options, bool& help, std::string& error) {
+  help = false;
+  std::vector<std::string> args(argv + 1, argv + argc);
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& arg = args[i];
+    auto value = [&](std::string& out) {
+      if (i + 1 >= args.size()) {
+        error = arg + " needs a value";
+        return false;
+      }
+      out = args[++i];
+      return true;
+    };
+    std::string v;
+    if (arg == "--help" || arg == "-h") {
+      help = true;
+      return true;
+    } else if (arg == "--profile") {
+      if (!value(v)) return false;
+      if (!parseProfile(v, options.profile)) {
+        error = "--profile must be one of reference, high, balanced, performance, auto (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--technique") {
+      if (!value(v)) return false;
+      // Only the brute-force technique exists so far; it is what the Reference profile runs.
+      if (v != "reference") {
+        error = "--technique must be one of: reference (got '" + v + "')";
+        return false;
+      }
+      options.profile = Profile::Reference;
+    } else if (arg == "--width" || arg == "--height") {
+      if (!value(v)) return false;
+      std::uint32_t& target = arg == "--width" ? options.width : options.height;
+      if (!parseUint(v, 1, 16384, target)) {
+        error = arg + " must be an integer in [1, 16384] (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--shadow-map-size") {
+      if (!value(v)) return false;
+      if (!parseUint(v, 16, 16384, options.shadowMapSize) || (options.shadowMapSize & (options.shadowMapSize - 1)) != 0) {
+        error = "--shadow-map-size must be a power of two in [16, 16384] (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--frames") {
+      if (!value(v)) return false;
+      if (!parseUint(v, 1, 100000, options.frames)) {
+        error = "--frames must be an integer in [1, 100000] (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--output") {
+      if (!value(options.outputPng)) return false;
+    } else if (arg == "--output-hdr") {
+      if (!value(options.outputExr)) return false;
+    } else if (arg == "--aov-scattering") {
+      if (!value(options.aovScattering)) return false;
+    } else if (arg == "--aov-transmittance") {
+      if (!value(options.aovTransmittance)) return false;
+    } else if (arg == "--timings") {
+      if (!value(options.timings)) return false;
+    } else if (arg == "--reverse-z") {
+      options.depth = host::DepthConvention::Reverse;
+    } else if (arg == "--infinite-far") {
+      options.infiniteFar = true;
+    } else if (arg == "--validation") {
+      options.validation = true;
+    } else if (!arg.empty() && arg[0] == '-') {
+      error = "unknown option " + arg;
+      return false;
+    } else if (options.scenePath.empty()) {
+      options.scenePath = arg;
+    } else {
+      error = "only one scene file may be given (got '" + options.scenePath + "' and '" + arg + "')";
+      return false;
+    }
+  }
+  if (options.scenePath.empty()) {
+    error = "no scene file given";
+    return false;
+  }
+  return true;
+}
+
+bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
+                 RenderResult& result, std::string& error) {
+  const bool aovs = wantAovs || !options.aovScattering.empty() || !options.aovTransmittance.empty();
+  host::RenderSettings settings;
+  settings.width = options.width;
+  settings.height = options.height;
+  settings.shadowMapSize = options.shadowMapSize;
+  settings.depth = options.depth;
+  settings.infiniteFar = options.infiniteFar;
+  settings.aovImages = aovs;
+
+  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
+  if (!renderer) return false;
+  std::unique_ptr<TyndallEffect> effect = TyndallEffect::create(device, settings, options.profile, error);
+  if (!effect) return false;
+  renderer->addPostProcess(effect.get());
+
+  for (std::uint32_t frame = 0; frame < options.frames; ++frame) {
+    if (!renderer->renderFrame(error)) {
+      renderer->waitIdle();  // the context and the renderer are destroyed next
+      return false;
+    }
+  }
+  renderer->waitIdle();
+  effect->context().collectTimings();
+
+  result.stats = effect->context().stats();
+  result.timings = effect->context().takeCompletedTimings();
+  result.deviceName = device.name();
+  if (!renderer->readBackBuffer(result.color, error)) return false;
+  if (aovs) {
+    if (!renderer->readAovScattering(result.scattering, error)) return false;
+    if (!renderer->readAovTransmittance(result.transmittance, error)) return false;
+  }
+  return true;
+}
+
+std::string timingsJson(const RenderOptions& options, const RenderResult& result) {
+  std::map<std::string, std::vector<double>> perPass;
+  std::vector<double> totals;
+  for (const FrameTimings& frame : result.timings) {
+    for (const PassTiming& pass : frame.passes) perPass[pass.name].push_back(pass.milliseconds);
+    totals.push_back(frame.totalMilliseconds);
+  }
+  nlohmann::ordered_json json;
+  json["device"] = result.deviceName;
+  json["scene"] = options.scenePath;
+  json["profile"] = to_string(options.profile);
+  json["technique"] = to_string(result.stats.technique);
+  json["techniqueNote"] = result.stats.techniqueNote;
+  json["width"] = options.width;
+  json["height"] = options.height;
+  json["framesRendered"] = options.frames;
+  json["framesTimed"] = result.timings.size();
+  json["timestampsSupported"] = result.stats.timestampsSupported;
+  json["passesRecorded"] = result.stats.passesRecorded;
+  nlohmann::ordered_json passes = nlohmann::ordered_json::object();
+  // In recording order of the last frame.
+  for (const std::string& name : result.stats.passesRecorded) {
+    if (perPass.contains(name)) passes[name] = median(perPass[name]);
+  }
+  json["passMilliseconds"] = passes;
+  json["totalMilliseconds"] = median(totals);
+  return json.dump(2) + "\n";
+}
+
+namespace {
+
+bool writeText(const std::string& path, const std::string& text, std::string& error) {
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream file(tmp, std::ios::binary);
+    file << text;
+    if (!file) {
+      error = "cannot write " + path;
+      return false;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    error = "cannot write " + path + ": " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+void makeParent(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+}
+
+}  // namespace
+
+bool writeOutputs(const RenderOptions& options, const RenderResult& result, std::string& error) {
+  for (const std::string* path : {&options.outputPng, &options.outputExr, &options.aovScattering,
+                                  &options.aovTransmittance, &options.timings}) {
+    if (!path->empty()) makeParent(*path);
+  }
+  if (!options.outputPng.empty()) {
+    std::vector<std::uint8_t> rgba8;
+    if (!host::displayToSrgb8(result.color, rgba8, error)) return false;
+    if (!host::writePng(options.outputPng, result.color.width, result.color.height, rgba8, error)) return false;
+  }
+  if (!options.outputExr.empty() && !host::writeExr(options.outputExr, result.color, error)) return false;
+  if (!options.aovScattering.empty() && !host::writeExr(options.aovScattering, result.scattering, error)) return false;
+  if (!options.aovTransmittance.empty() && !host::writeExr(options.aovTransmittance, result.transmittance, error)) {
+    return false;
+  }
+  if (!options.timings.empty() && !writeText(options.timings, timingsJson(options, result), error)) return false;
+  return true;
+}
+
+int runTyndallRender(int argc, const char* const* argv) {
+  RenderOptions options;
+  bool help = false;
+  std::string error;
+  if (!parseCommandLine(argc, argv, options, help, error)) {
+    std::fprintf(stderr, "tyndall-render: %s\n", error.c_str());
+    return 2;
+  }
+  if (help) {
+    std::fputs(usage().c_str(), stdout);
+    return 0;
+  }
+  host::SceneLoadResult loaded = host::loadScene(options.scenePath);
+  if (!loaded.scene) {
+    std::fprintf(stderr, "tyndall-render: %s: %s\n", options.scenePath.c_str(), loaded.error.c_str());
+    return 1;
+  }
+  host::DeviceOptions deviceOptions;
+  deviceOptions.validation = options.validation;
+  std::unique_ptr<host::Device> device = host::Device::create(deviceOptions, error);
+  if (!device) {
+    std::fprintf(stderr, "tyndall-render: %s\n", error.c_str());
+    return 1;
+  }
+  RenderResult result;
+  if (!renderScene(*device, *loaded.scene, options, false, result, error)) {
+    std::fprintf(stderr, "tyndall-render: %s\n", error.c_str());
+    return 1;
+  }
+  if (options.validation && !device->validationMessages().empty()) {
+    std::fprintf(stderr, "tyndall-render: %zu validation message(s), first: %s\n",
+                 device->validationMessages().size(), device->validationMessages().front().c_str());
+    return 1;
+  }
+  if (!writeOutputs(options, result, error)) {
+    std::fprintf(stderr, "tyndall-render: %s\n", error.c_str());
+    return 1;
+  }
+  std::fputs(timingsJson(options, result).c_str(), stdout);
+  return 0;
+}
+
+}  // namespace tyndall::samples

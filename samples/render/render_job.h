@@ -1,0 +1,62 @@
+// tyndall-render's job, callable from tests: parse the command line (DESIGN.md "The sample
+// renderer"), render a scene through the stub host with Tyndall in its post-process stack,
+// and write the outputs.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tyndall/tyndall.h"
+#include "tyndall_host/renderer.h"
+
+namespace tyndall::samples {
+
+struct RenderOptions {
+  std::string scenePath;
+  Profile profile = Profile::Balanced;  ///< the default profile
+  std::uint32_t width = 640;
+  std::uint32_t height = 360;
+  std::uint32_t shadowMapSize = 0;      ///< 0: the scene's
+  std::uint32_t frames = 1;
+  std::string outputPng;
+  std::string outputExr;
+  std::string aovScattering;
+  std::string aovTransmittance;
+  std::string timings;
+  // Beyond the contract: conventions of the host's depth buffer, and validation layers.
+  host::DepthConvention depth = host::DepthConvention::Standard;
+  bool infiniteFar = false;
+  bool validation = false;
+};
+
+/// Parses argv. Returns false with a one-line reason; `help` is set for --help.
+bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options, bool& help, std::string& error);
+std::string usage();
+
+struct RenderResult {
+  host::ImageRgba32f color;          ///< back buffer after the post-process stack (scene-linear)
+  host::ImageRgba32f scattering;     ///< L_in (only if requested by the options)
+  host::ImageRgba32f transmittance;  ///< T (only if requested by the options)
+  Stats stats;                       ///< after the last frame
+  std::vector<FrameTimings> timings; ///< every frame whose timestamps were read
+  std::string deviceName;
+};
+
+/// Renders `options.frames` frames of `scene` on `device`. AOVs are read back when the options
+/// name an AOV file or `wantAovs` is set.
+bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
+                 RenderResult& result, std::string& error);
+
+/// Median per pass and of the total over the timed frames, as JSON text.
+std::string timingsJson(const RenderOptions& options, const RenderResult& result);
+
+/// Writes every output the options name (PNG through the OpenColorIO display transform, EXRs,
+/// timings JSON). Files are written whole or not at all.
+bool writeOutputs(const RenderOptions& options, const RenderResult& result, std::string& error);
+
+/// Parses, loads, renders and writes; returns the process exit status and prints one line on error.
+int runTyndallRender(int argc, const char* const* argv);
+
+}  // namespace tyndall::samples

@@ -1,0 +1,140 @@
+#include "tyndall_effect.h"
+
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace tyndall::samples {
+
+namespace {
+
+Mat4 toMat4(const glm::mat4& m) {
+  Mat4 out{};
+  std::memcpy(out.data(), glm::value_ptr(m), sizeof(out));
+  return out;
+}
+
+Float3 toFloat3(const glm::dvec3& v) {
+  return {static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+}
+
+ImageRef toImageRef(const host::HostImage& image) {
+  ImageRef ref;
+  ref.image = image.image;
+  ref.view = image.view;
+  ref.format = image.format;
+  ref.extent = image.extent;
+  ref.layout = image.layout;
+  return ref;
+}
+
+float radians(double degrees) { return static_cast<float>(degrees * M_PI / 180.0); }
+
+PhaseFunction toPhase(host::PhaseType type) {
+  switch (type) {
+    case host::PhaseType::Rayleigh: return PhaseFunction::Rayleigh;
+    case host::PhaseType::HenyeyGreenstein: return PhaseFunction::HenyeyGreenstein;
+    case host::PhaseType::CornetteShanks: return PhaseFunction::CornetteShanks;
+    case host::PhaseType::Isotropic: break;
+  }
+  return PhaseFunction::Isotropic;
+}
+
+}  // namespace
+
+LightDesc toLightDesc(const host::Light& light) {
+  LightDesc desc;
+  switch (light.type) {
+    case host::LightType::Directional: desc.type = LightType::Directional; break;
+    case host::LightType::Spot: desc.type = LightType::Spot; break;
+    case host::LightType::Point: desc.type = LightType::Point; break;
+  }
+  desc.direction = toFloat3(light.direction);
+  desc.position = toFloat3(light.position);
+  desc.color = toFloat3(light.color);
+  desc.intensity = static_cast<float>(light.intensity);
+  desc.innerConeRadians = radians(light.innerConeDegrees);
+  desc.outerConeRadians = radians(light.outerConeDegrees);
+  return desc;
+}
+
+std::vector<MediumComponent> toMedium(const std::vector<host::MediumComponent>& medium) {
+  std::vector<MediumComponent> out;
+  for (const host::MediumComponent& c : medium) {
+    MediumComponent component;
+    component.scattering = toFloat3(c.scattering);
+    component.absorption = toFloat3(c.absorption);
+    component.phase = toPhase(c.phase);
+    component.g = static_cast<float>(c.g);
+    out.push_back(component);
+  }
+  return out;
+}
+
+std::unique_ptr<TyndallEffect> TyndallEffect::create(host::Device& device, const host::RenderSettings& settings,
+                                                     Profile profile, std::string& error) {
+  auto effect = std::unique_ptr<TyndallEffect>(new TyndallEffect());
+  effect->profile_ = profile;
+  ContextDesc desc;
+  desc.instance = device.instance();
+  desc.physicalDevice = device.physicalDevice();
+  desc.device = device.device();
+  desc.getInstanceProcAddr = device.getInstanceProcAddr();
+  desc.getDeviceProcAddr = device.getDeviceProcAddr();
+  desc.queueFamilyIndex = device.queueFamily();
+  desc.maxFramesInFlight = settings.framesInFlight;
+  desc.outputExtent = {settings.width, settings.height};
+  desc.backBufferFormat = settings.backBufferFormat;
+  desc.messageCallback = &TyndallEffect::onMessage;
+  desc.messageUserData = effect.get();
+  if (Outcome outcome = Context::create(desc, effect->context_); !outcome) {
+    error = "tyndall: " + outcome.message;
+    return nullptr;
+  }
+  return effect;
+}
+
+void TyndallEffect::onMessage(Severity severity, const char* message, void* user) {
+  auto* self = static_cast<TyndallEffect*>(user);
+  const char* prefix = severity == Severity::Error ? "error: " : severity == Severity::Warning ? "warning: " : "";
+  self->messages_.push_back(std::string(prefix) + message);
+}
+
+bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) {
+  const host::Scene& scene = *inputs.scene;
+  const std::vector<MediumComponent> medium = toMedium(scene.medium);
+  std::vector<ShadowMapDesc> shadowMaps;
+  for (const host::HostShadowMap& map : inputs.shadowMaps) {
+    shadowMaps.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip)});
+  }
+
+  FrameDesc frame;
+  frame.camera.view = toMat4(inputs.view);
+  frame.camera.projection = toMat4(inputs.projection);
+  frame.camera.infiniteFarSkyDistance = static_cast<float>(scene.camera.farPlane);
+  frame.light = toLightDesc(scene.light);
+  frame.medium = medium;
+  frame.shadowMaps = shadowMaps;
+  frame.depth = toImageRef(inputs.depth);
+  frame.color = toImageRef(inputs.color);
+  frame.scatteringOutput = toImageRef(inputs.aovScattering);
+  frame.transmittanceOutput = toImageRef(inputs.aovTransmittance);
+  frame.profile = profile_;
+
+  if (Outcome outcome = context_->record(cmd, frame); !outcome) {
+    error = std::string("tyndall: ") + to_string(outcome.status) + ": " + outcome.message;
+    return false;
+  }
+  return true;
+}
+
+bool TyndallEffect::resize(VkExtent2D extent, std::string& error) {
+  if (Outcome outcome = context_->resize(extent); !outcome) {
+    error = "tyndall: " + outcome.message;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace tyndall::samples

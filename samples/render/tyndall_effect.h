@@ -1,0 +1,40 @@
+// Tyndall inserted into the stub host's post-process stack, as an engine would insert it:
+// the host's per-frame data becomes a tyndall::FrameDesc.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "tyndall/tyndall.h"
+#include "tyndall_host/renderer.h"
+
+namespace tyndall::samples {
+
+class TyndallEffect final : public host::PostProcessEffect {
+ public:
+  /// Creates the Tyndall context on the host's device.
+  static std::unique_ptr<TyndallEffect> create(host::Device& device, const host::RenderSettings& settings,
+                                               Profile profile, std::string& error);
+
+  bool record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) override;
+  bool resize(VkExtent2D extent, std::string& error) override;
+
+  void setProfile(Profile profile) { profile_ = profile; }
+  Context& context() { return *context_; }
+  /// Messages the context reported through its callback.
+  const std::vector<std::string>& messages() const { return messages_; }
+
+ private:
+  static void onMessage(Severity severity, const char* message, void* user);
+
+  std::unique_ptr<Context> context_;
+  Profile profile_ = Profile::Balanced;
+  std::vector<std::string> messages_;
+};
+
+/// Converts the host's scene description into Tyndall's (radians, float, spans).
+LightDesc toLightDesc(const host::Light& light);
+std::vector<MediumComponent> toMedium(const std::vector<host::MediumComponent>& medium);
+
+}  // namespace tyndall::samples

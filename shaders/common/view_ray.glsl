@@ -1,0 +1,36 @@
+// View rays from the host's depth buffer (DESIGN.md "Radiometry"): the ray starts at the camera
+// position, and a pixel without a surface integrates to the far plane, or to the configured sky
+// distance when the far plane is at infinity. Needs `frame` (FrameConstants) in scope.
+#ifndef TYNDALL_VIEW_RAY_GLSL
+#define TYNDALL_VIEW_RAY_GLSL
+
+struct TynViewRay {
+  vec3 origin;     // camera position, world space
+  vec3 direction;  // unit, world space
+  float surface_distance;  // to the first surface (or the far plane / sky distance)
+};
+
+// pixel: integer pixel coordinates; depth: the host's depth-buffer value there.
+TynViewRay tyn_view_ray(uvec2 pixel, float depth) {
+  vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0;
+  // The direction comes from the near-plane point, which exists for every projection convention.
+  vec4 near_point = frame.clip_to_view * vec4(ndc, frame.depth_params.x, 1.0);
+  vec3 view_dir = normalize(near_point.xyz / near_point.w);
+
+  float ray_length;
+  bool sky = depth == frame.depth_params.y;
+  if (sky && frame.depth_params.z > 0.5) {
+    ray_length = frame.depth_params.w;
+  } else {
+    vec4 surface = frame.clip_to_view * vec4(ndc, depth, 1.0);
+    ray_length = length(surface.xyz / surface.w);
+  }
+
+  TynViewRay ray;
+  ray.origin = frame.view_to_world[3].xyz;
+  ray.direction = normalize(mat3(frame.view_to_world) * view_dir);
+  ray.surface_distance = ray_length;
+  return ray;
+}
+
+#endif

@@ -1,0 +1,153 @@
+// The brute-force in-scattering integral (yusov2013's "starting point"): the view ray is walked
+// through the shadow map texel by texel. Within one texel the stored depth is constant and the
+// ray's shadow-clip coordinates are linear in t (homogeneously), so the lit part of each texel
+// segment is found exactly by solving one linear inequality. Lit parts are integrated in closed
+// form for a directional light and by Gauss–Legendre quadrature for spot and point lights.
+// Needs `frame` (FrameConstants) and `shadow_maps[]` (sampler2D array) in scope.
+#ifndef TYNDALL_REFERENCE_MARCH_GLSL
+#define TYNDALL_REFERENCE_MARCH_GLSL
+
+#include "common/medium.glsl"
+#include "common/segment_integral.h"
+
+const float TYN_INFINITY = 3.0e38;
+
+// Shadow-clip coordinates along the ray, h(t) = h0 + t · h1 (homogeneous, so linear in t).
+struct TynShadowRay {
+  vec4 h0;
+  vec4 h1;
+};
+
+TynShadowRay tyn_shadow_ray(uint map, vec3 origin, vec3 dir) {
+  TynShadowRay r;
+  r.h0 = frame.world_to_shadow[map] * vec4(origin, 1.0);
+  r.h1 = frame.world_to_shadow[map] * vec4(dir, 0.0);
+  return r;
+}
+
+// Clips [t0, t1] to the map's pyramid (perspective) or slab (orthographic): |x| ≤ w, |y| ≤ w.
+// Each bound is a + b t ≥ 0.
+bool tyn_clip_to_shadow_map(TynShadowRay r, inout float t0, inout float t1) {
+  vec4 a = vec4(r.h0.w - r.h0.x, r.h0.w + r.h0.x, r.h0.w - r.h0.y, r.h0.w + r.h0.y);
+  vec4 b = vec4(r.h1.w - r.h1.x, r.h1.w + r.h1.x, r.h1.w - r.h1.y, r.h1.w + r.h1.y);
+  for (int i = 0; i < 4; ++i) {
+    if (b[i] == 0.0) {
+      if (a[i] < 0.0) return false;
+    } else if (b[i] > 0.0) {
+      t0 = max(t0, -a[i] / b[i]);
+    } else {
+      t1 = min(t1, -a[i] / b[i]);
+    }
+  }
+  return t0 < t1;
+}
+
+// t at which the ray crosses the texel edge at NDC coordinate `edge` along one axis:
+// (h0 + t h1) / (h0w + t h1w) = edge.
+float tyn_edge_crossing(float h0, float h1, float h0w, float h1w, float edge) {
+  float denom = h1 - edge * h1w;
+  return denom == 0.0 ? TYN_INFINITY : (edge * h0w - h0) / denom;
+}
+
+// Direction (−1, 0, +1) in which the texel index moves along one axis as t grows. The projected
+// coordinate is a linear-fractional function of t, monotonic wherever w > 0; a derivative
+// numerator within rounding noise of zero means no motion.
+int tyn_texel_step(float h0, float h1, float h0w, float h1w) {
+  float numer = h1 * h0w - h0 * h1w;
+  float noise = 1e-6 * (abs(h1 * h0w) + abs(h0 * h1w));
+  return abs(numer) <= noise ? 0 : (numer > 0.0 ? 1 : -1);
+}
+
+// Walks [t0, t1] (already inside the map) texel by texel. A directional light returns
+// Σ_lit ∫ e^{−σ_t t} dt; a spot or point light returns the in-scattered radiance of the lit parts.
+vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional) {
+  TynShadowRay r = tyn_shadow_ray(map, origin, dir);
+  int size = int(frame.counts.w);
+  float n = float(size);
+
+  vec4 h_start = r.h0 + t0 * r.h1;
+  vec2 uv = (h_start.xy / h_start.w) * 0.5 + 0.5;
+  ivec2 texel = clamp(ivec2(floor(uv * n)), ivec2(0), ivec2(size - 1));
+  ivec2 step_dir = ivec2(tyn_texel_step(r.h0.x, r.h1.x, r.h0.w, r.h1.w),
+                         tyn_texel_step(r.h0.y, r.h1.y, r.h0.w, r.h1.w));
+
+  vec3 sum = vec3(0.0);
+  float t = t0;
+  // Every step crosses one texel edge, so 2·size steps cross the whole map; the margin covers
+  // rounding at the start.
+  int max_steps = 2 * size + 8;
+  for (int i = 0; i < max_steps && t < t1; ++i) {
+    float tx = step_dir.x == 0 ? TYN_INFINITY
+                               : tyn_edge_crossing(r.h0.x, r.h1.x, r.h0.w, r.h1.w,
+                                                   float(texel.x + max(step_dir.x, 0)) / n * 2.0 - 1.0);
+    float ty = step_dir.y == 0 ? TYN_INFINITY
+                               : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w,
+                                                   float(texel.y + max(step_dir.y, 0)) / n * 2.0 - 1.0);
+    float t_next = clamp(min(tx, ty), t, t1);
+
+    if (t_next > t) {
+      float z_texel = texelFetch(shadow_maps[map], texel, 0).r;
+      // Lit where z(t) ≤ z_texel · w(t), i.e. A t ≤ B. A texel at the clear value (1) has no
+      // occluder: everything in it is lit, also beyond the map's far plane.
+      float lit_begin = t;
+      float lit_end = t_next;
+      if (z_texel < 1.0) {
+        float A = r.h1.z - z_texel * r.h1.w;
+        float B = z_texel * r.h0.w - r.h0.z;
+        if (A > 0.0) {
+          lit_end = min(lit_end, B / A);
+        } else if (A < 0.0) {
+          lit_begin = max(lit_begin, B / A);
+        } else if (B < 0.0) {
+          lit_end = lit_begin;
+        }
+      }
+      if (lit_end > lit_begin) {
+        sum += directional ? tyn_transmittance_integral(lit_begin, lit_end, frame.extinction.rgb)
+                           : tyn_local_light_segment(origin, dir, lit_begin, lit_end);
+      }
+    }
+    t = t_next;
+    if (tx <= ty) {
+      texel.x += step_dir.x;
+    } else {
+      texel.y += step_dir.y;
+    }
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) break;
+  }
+  return sum;
+}
+
+// L_in along [0, s] of the view ray (DESIGN.md "Radiometry").
+vec3 tyn_reference_in_scattering(vec3 origin, vec3 dir, float s) {
+  if (frame.counts.x == TYN_LIGHT_DIRECTIONAL) {
+    // Outside the map's square there is no occluder information: lit.
+    float t_in = 0.0;
+    float t_out = s;
+    vec3 lit;
+    TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
+    if (tyn_clip_to_shadow_map(r, t_in, t_out)) {
+      lit = tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb) +
+            tyn_walk_shadow_map(0u, origin, dir, t_in, t_out, true) +
+            tyn_transmittance_integral(t_out, s, frame.extinction.rgb);
+    } else {
+      lit = tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
+    }
+    float cos_theta = dot(dir, -frame.light_direction.xyz);
+    return frame.light_radiance.rgb * tyn_phase_weighted_scattering(cos_theta) * lit;
+  }
+
+  // Spot: one frustum around the cone; point: six 90° frusta that tile all directions. Outside
+  // the frusta the light does not reach.
+  vec3 sum = vec3(0.0);
+  for (uint map = 0u; map < frame.counts.z; ++map) {
+    float t_in = 0.0;
+    float t_out = s;
+    if (tyn_clip_to_shadow_map(tyn_shadow_ray(map, origin, dir), t_in, t_out)) {
+      sum += tyn_walk_shadow_map(map, origin, dir, t_in, t_out, false);
+    }
+  }
+  return sum;
+}
+
+#endif

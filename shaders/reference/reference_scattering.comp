@@ -1,0 +1,32 @@
+#version 460
+// Reference technique: per-pixel brute force (see reference_march.glsl). Writes L_in and the
+// view-ray transmittance for the composite pass.
+#extension GL_GOOGLE_include_directive : require
+
+#include "common/shared_constants.h"
+
+layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; };
+layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
+layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
+layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D out_scattering;
+layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D out_transmittance;
+
+#include "common/view_ray.glsl"
+#include "reference/reference_march.glsl"
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(pixel, frame.extent.xy))) return;
+
+  float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
+  TynViewRay ray = tyn_view_ray(pixel, depth);
+  vec3 in_scattering = frame.extent.z != 0u
+                           ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
+                           : vec3(0.0);
+  vec3 transmittance = exp(-frame.extinction.rgb * ray.surface_distance);
+
+  imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  imageStore(out_transmittance, ivec2(pixel), vec4(transmittance, 1.0));
+}

@@ -69,12 +69,20 @@ TEST(Projection, RejectsBadMatrices) {
   nan[0][0] = NAN;
   EXPECT_FALSE(tyndall::analyzeProjection(nan, info).ok());
   EXPECT_FALSE(tyndall::analyzeProjection(glm::dmat4(1.0), info).ok());  // orthographic
-  // near >= far: swap the planes.
+  // A standard-Z matrix built with near and far swapped is exactly a reverse-Z matrix and is
+  // accepted as one; a far plane behind the camera (here far = −5) is near >= far.
   const glm::dmat4 swapped = perspective(1.0, 1.0, 100.0, 0.1, false);
-  const tyndall::Outcome o = tyndall::analyzeProjection(swapped, info);
-  EXPECT_FALSE(o.ok());
-  EXPECT_EQ(o.status, tyndall::Status::InvalidArgument);
-  EXPECT_FALSE(o.message.empty());
+  ASSERT_TRUE(tyndall::analyzeProjection(swapped, info).ok());
+  EXPECT_TRUE(info.reversed);
+  EXPECT_NEAR(info.nearDistance, 0.1, 1e-9);
+  EXPECT_NEAR(info.farDistance, 100.0, 1e-9);
+  for (bool reversed : {false, true}) {
+    const glm::dmat4 behind = perspective(1.0, 1.0, 0.1, -5.0, reversed);
+    const tyndall::Outcome o = tyndall::analyzeProjection(behind, info);
+    EXPECT_FALSE(o.ok());
+    EXPECT_EQ(o.status, tyndall::Status::InvalidArgument);
+    EXPECT_NE(o.message.find("near >= far"), std::string::npos) << o.message;
+  }
 }
 
 }  // namespace

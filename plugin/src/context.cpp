@@ -285,9 +285,6 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
 
   timer.beginPass(gpu, cmd, "reference_scattering");
   reference.record(gpu, cmd, slot, bindings, extent);
-  timer.endPass(gpu, cmd);
-  stats.passesRecorded.emplace_back("reference_scattering");
-
   releaseDepth(frame.depth, bindings.depthLayout);
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
     releaseDepth(frame.shadowMaps[i].depth, bindings.shadowLayouts[i]);
@@ -295,8 +292,11 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   for (const OwnedImage* target : {&scattering, &transmittance}) {
     imageBarrier(gpu, cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                  {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
-                 {VK_IMAGE_LAYOUT_GENERAL, readers, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT});
+                 {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT});
   }
+  timer.endPass(gpu, cmd);
+  stats.passesRecorded.emplace_back("reference_scattering");
 
   // Composite into the back buffer.
   const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -331,12 +331,16 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool
                  transferWrite);
     const VkImageSubresourceLayers dstLayers{VK_IMAGE_ASPECT_COLOR_BIT, 0, output->arrayLayer, 1};
     if (fromTargets) {
+      // The composite read the target; the blit reads it in the layout transfers prefer.
+      imageBarrier(gpu, cmd, source->image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                   {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0},
+                   {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
       VkImageBlit region{};
       region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
       region.dstSubresource = dstLayers;
       region.dstOffsets[1] = region.srcOffsets[1];
-      gpu.vk.vkCmdBlitImage(cmd, source->image, VK_IMAGE_LAYOUT_GENERAL, output->image, layout, 1, &region,
+      gpu.vk.vkCmdBlitImage(cmd, source->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output->image, layout, 1, &region,
                             VK_FILTER_NEAREST);
     } else {
       const float value = source == &scattering ? 0.0f : 1.0f;

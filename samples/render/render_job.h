@@ -29,6 +29,9 @@ struct RenderOptions {
   host::DepthConvention depth = host::DepthConvention::Standard;
   bool infiniteFar = false;
   bool validation = false;
+  bool noEffect = false;  ///< render without Tyndall: the host's own cost, for wall-clock baselines
+  VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  ///< not on the command line
+  std::uint32_t framesInFlight = 2;                           ///< not on the command line
 };
 
 /// Parses argv. Returns false with a one-line reason; `help` is set for --help.
@@ -41,6 +44,9 @@ struct RenderResult {
   host::ImageRgba32f transmittance;  ///< T (only if requested by the options)
   Stats stats;                       ///< after the last frame
   std::vector<FrameTimings> timings; ///< every frame whose timestamps were read
+  /// Wall-clock milliseconds per frame, host passes included, over frames 2..N (frame 1 when
+  /// N = 1): on a CPU driver such as lavapipe this is the time the device spends.
+  double wallMillisecondsPerFrame = 0.0;
   std::string deviceName;
 };
 

@@ -101,12 +101,12 @@ void TyndallEffect::onMessage(Severity severity, const char* message, void* user
   self->messages_.push_back(std::string(prefix) + message);
 }
 
-bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) {
+FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, FrameStorage& storage) {
   const host::Scene& scene = *inputs.scene;
-  const std::vector<MediumComponent> medium = toMedium(scene.medium);
-  std::vector<ShadowMapDesc> shadowMaps;
+  storage.medium = toMedium(scene.medium);
+  storage.shadowMaps.clear();
   for (const host::HostShadowMap& map : inputs.shadowMaps) {
-    shadowMaps.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip)});
+    storage.shadowMaps.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip)});
   }
 
   FrameDesc frame;
@@ -114,14 +114,19 @@ bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& i
   frame.camera.projection = toMat4(inputs.projection);
   frame.camera.infiniteFarSkyDistance = static_cast<float>(scene.camera.farPlane);
   frame.light = toLightDesc(scene.light);
-  frame.medium = medium;
-  frame.shadowMaps = shadowMaps;
+  frame.medium = storage.medium;
+  frame.shadowMaps = storage.shadowMaps;
   frame.depth = toImageRef(inputs.depth);
   frame.color = toImageRef(inputs.color);
   frame.scatteringOutput = toImageRef(inputs.aovScattering);
   frame.transmittanceOutput = toImageRef(inputs.aovTransmittance);
-  frame.profile = profile_;
+  frame.profile = profile;
+  return frame;
+}
 
+bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) {
+  FrameStorage storage;
+  const FrameDesc frame = makeFrameDesc(inputs, profile_, storage);
   if (Outcome outcome = context_->record(cmd, frame); !outcome) {
     error = std::string("tyndall: ") + to_string(outcome.status) + ": " + outcome.message;
     return false;

@@ -37,4 +37,12 @@ class TyndallEffect final : public host::PostProcessEffect {
 LightDesc toLightDesc(const host::Light& light);
 std::vector<MediumComponent> toMedium(const std::vector<host::MediumComponent>& medium);
 
+/// What a FrameDesc's spans point into; must outlive the FrameDesc.
+struct FrameStorage {
+  std::vector<MediumComponent> medium;
+  std::vector<ShadowMapDesc> shadowMaps;
+};
+/// The FrameDesc an engine would build from its per-frame data.
+FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, FrameStorage& storage);
+
 }  // namespace tyndall::samples

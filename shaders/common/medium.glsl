@@ -44,20 +44,24 @@ vec3 tyn_local_light_integrand(vec3 origin, vec3 view_dir, float t) {
 // distance to the light, so that the 1/d² peak near the light is resolved (relative error of
 // the rule on such a piece is below 1e-5 for 1/d²).
 vec3 tyn_local_light_segment(vec3 origin, vec3 view_dir, float a, float b) {
-  const float nodes[2] = float[2](0.3399810435848563, 0.8611363115940526);
-  const float weights[2] = float[2](0.6521451548625461, 0.3478548451374538);
+  // Nodes ±x0, ±x1 and weights w0, w1 of the 4-point rule on [−1, 1].
+  const float x0 = 0.3399810435848563;
+  const float x1 = 0.8611363115940526;
+  const float w0 = 0.6521451548625461;
+  const float w1 = 0.3478548451374538;
   float t_closest = clamp(dot(frame.light_position.xyz - origin, view_dir), a, b);
   float d_near = max(length(origin + t_closest * view_dir - frame.light_position.xyz), 1e-4);
-  float pieces = clamp(ceil((b - a) / (0.5 * d_near)), 1.0, 64.0);
-  float h = (b - a) / pieces;
+  int pieces = int(clamp(ceil((b - a) / (0.5 * d_near)), 1.0, 64.0));
+  float h = (b - a) / float(pieces);
   vec3 sum = vec3(0.0);
-  for (float i = 0.0; i < pieces; i += 1.0) {
-    float mid = a + (i + 0.5) * h;
-    for (int k = 0; k < 2; ++k) {
-      float dt = 0.5 * h * nodes[k];
-      sum += weights[k] * (tyn_local_light_integrand(origin, view_dir, mid - dt) +
-                           tyn_local_light_integrand(origin, view_dir, mid + dt));
-    }
+  for (int i = 0; i < pieces; ++i) {
+    float mid = a + (float(i) + 0.5) * h;
+    float d0 = 0.5 * h * x0;
+    float d1 = 0.5 * h * x1;
+    sum += w0 * (tyn_local_light_integrand(origin, view_dir, mid - d0) +
+                 tyn_local_light_integrand(origin, view_dir, mid + d0));
+    sum += w1 * (tyn_local_light_integrand(origin, view_dir, mid - d1) +
+                 tyn_local_light_integrand(origin, view_dir, mid + d1));
   }
   return sum * 0.5 * h;
 }

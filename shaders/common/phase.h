@@ -15,13 +15,20 @@ TYN_FUNC float tyn_phase_rayleigh(float cos_theta) {
   return 3.0f / (16.0f * TYN_PI) * (1.0f + cos_theta * cos_theta);
 }
 
+// 1 + g² − 2g·cos θ as a sum of non-negative terms, so that it keeps float's relative precision
+// where a strong lobe peaks (g → ±1, cos θ → ±1) instead of cancelling to a few digits.
+TYN_FUNC float tyn_phase_denominator(float cos_theta, float g) {
+  return g >= 0.0f ? (1.0f - g) * (1.0f - g) + 2.0f * g * (1.0f - cos_theta)
+                   : (1.0f + g) * (1.0f + g) - 2.0f * g * (1.0f + cos_theta);
+}
+
 TYN_FUNC float tyn_phase_henyey_greenstein(float cos_theta, float g) {
-  float denom = max(1.0f + g * g - 2.0f * g * cos_theta, 1e-8f);
+  float denom = tyn_phase_denominator(cos_theta, g);
   return (1.0f - g * g) / (4.0f * TYN_PI * denom * sqrt(denom));
 }
 
 TYN_FUNC float tyn_phase_cornette_shanks(float cos_theta, float g) {
-  float denom = max(1.0f + g * g - 2.0f * g * cos_theta, 1e-8f);
+  float denom = tyn_phase_denominator(cos_theta, g);
   return 3.0f * (1.0f - g * g) / (8.0f * TYN_PI * (2.0f + g * g)) *
          (1.0f + cos_theta * cos_theta) / (denom * sqrt(denom));
 }

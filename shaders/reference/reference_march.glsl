@@ -58,6 +58,19 @@ int tyn_texel_step(float h0, float h1, float h0w, float h1w) {
   return abs(numer) <= noise ? 0 : (numer > 0.0 ? 1 : -1);
 }
 
+// Depth of one texel of one shadow map. Without shaderSampledImageArrayDynamicIndexing a sampler
+// array may only be indexed by constants.
+float tyn_shadow_texel(uint map, ivec2 texel) {
+  switch (map) {
+    case 0u: return texelFetch(shadow_maps[0], texel, 0).r;
+    case 1u: return texelFetch(shadow_maps[1], texel, 0).r;
+    case 2u: return texelFetch(shadow_maps[2], texel, 0).r;
+    case 3u: return texelFetch(shadow_maps[3], texel, 0).r;
+    case 4u: return texelFetch(shadow_maps[4], texel, 0).r;
+    default: return texelFetch(shadow_maps[5], texel, 0).r;
+  }
+}
+
 // Walks [t0, t1] (already inside the map) texel by texel. A directional light returns
 // Σ_lit ∫ e^{−σ_t t} dt; a spot or point light returns the in-scattered radiance of the lit parts.
 vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional) {
@@ -86,7 +99,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
     float t_next = clamp(min(tx, ty), t, t1);
 
     if (t_next > t) {
-      float z_texel = texelFetch(shadow_maps[map], texel, 0).r;
+      float z_texel = tyn_shadow_texel(map, texel);
       // Lit where z(t) ≤ z_texel · w(t), i.e. A t ≤ B. A texel at the clear value (1) has no
       // occluder: everything in it is lit, also beyond the map's far plane.
       float lit_begin = t;

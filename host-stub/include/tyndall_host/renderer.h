@@ -56,7 +56,9 @@ struct RenderSettings {
   std::uint32_t shadowMapSize = 0;  ///< 0: the scene's shadowMap.size
   DepthConvention depth = DepthConvention::Standard;
   bool infiniteFar = false;         ///< projection with the far plane at infinity
-  std::uint32_t framesInFlight = 2; ///< ≥ 1
+  std::uint32_t framesInFlight = 2; ///< 1..16; each slot has its own command buffer, fence and images
+  /// Colour attachment with blending and a readback path: R16G16B16A16_SFLOAT, R32G32B32A32_SFLOAT,
+  /// R8G8B8A8/B8G8R8A8 UNORM or SRGB, A2B10G10R10_UNORM_PACK32.
   VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   bool aovImages = false;           ///< allocate the two RGBA32F AOV images handed to effects
 };
@@ -72,6 +74,10 @@ struct HostImage {
 
 struct HostShadowMap {
   HostImage depth;               ///< D32_SFLOAT, SHADER_READ_ONLY_OPTIMAL when effects run
+  /// proj · view: clip depth [0, 1] with 0 nearest the light (cleared to 1), x, y ∈ [−1, 1] over
+  /// the map, u = (x + 1) / 2 → column u·N, v = (y + 1) / 2 → row v·N. Directional: orthographic,
+  /// fitted to the casters that can shadow the visible volume (nearer points clamp to depth 0).
+  /// Spot: perspective, fov = 2·(outer cone + 5°). Point: six 90° faces +X −X +Y −Y +Z −Z.
   glm::mat4 worldToShadowClip{1.0f};
 };
 
@@ -108,11 +114,13 @@ struct ImageRgba32f {
 
 class Renderer {
  public:
+  /// `device` must outlive the renderer. The scene is copied; objects are triangulated once.
   static std::unique_ptr<Renderer> create(Device& device, const Scene& scene,
                                           const RenderSettings& settings, std::string& error);
   ~Renderer();
 
-  /// Appends an effect to the post-process stack (runs after lighting, before display).
+  /// Appends an effect to the post-process stack (runs after lighting, before display). Not
+  /// owned: it must stay alive while the renderer renders or resizes.
   void addPostProcess(PostProcessEffect* effect);
 
   /// Renders one frame (shadow, G-buffer, lighting, post-process stack), submits it and returns

@@ -126,8 +126,8 @@ void CompositePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
                            VkImageView transmittance, const ImageRef& color, VkImageLayout attachmentLayout) {
   const VkDescriptorSet set = sets_[slot];
   const std::array<VkDescriptorImageInfo, 2> images{{
-      {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_GENERAL},
-      {VK_NULL_HANDLE, transmittance, VK_IMAGE_LAYOUT_GENERAL},
+      {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
+      {VK_NULL_HANDLE, transmittance, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
   }};
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstSet = set;

@@ -17,7 +17,7 @@ class CompositePass {
   Outcome ensurePipeline(const Gpu& gpu, VkFormat format);
   [[nodiscard]] bool hasPipeline(VkFormat format) const { return pipelines_.contains(format); }
   /// `color` must be in `attachmentLayout` (COLOR_ATTACHMENT_OPTIMAL or GENERAL); the two
-  /// inputs in GENERAL, readable by the fragment shader.
+  /// inputs in SHADER_READ_ONLY_OPTIMAL, readable by the fragment shader.
   void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkImageView scattering,
               VkImageView transmittance, const ImageRef& color, VkImageLayout attachmentLayout);
 

@@ -1,0 +1,151 @@
+// Internal to the stub host: the camera and shadow-frustum set-up (CPU, double precision), the
+// merged scene geometry, and the three render passes the Renderer records every frame.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "host_shared.glsl"
+#include "tyndall_host/renderer.h"
+#include "vk_util.h"
+
+namespace tyndall::host::detail {
+
+inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+inline constexpr VkFormat kShadowFormat = VK_FORMAT_D32_SFLOAT;
+// Linear albedo in 8 bits loses the darks; the sRGB encoding stores it perceptually and the
+// sampler decodes it back to linear for free.
+inline constexpr VkFormat kAlbedoFormat = VK_FORMAT_R8G8B8A8_SRGB;
+inline constexpr VkFormat kNormalFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+inline constexpr VkFormat kAovFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+inline bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// ---------------------------------------------------------------------------------------------
+// Camera
+// ---------------------------------------------------------------------------------------------
+
+struct CameraSetup {
+  glm::dmat4 view{1.0};        // glm::lookAt(position, target, up)
+  glm::dmat4 projection{1.0};  // Vulkan clip, depth [0, 1], y flipped (row 0 = top of the picture)
+  // World-space corners of the view frustum: near plane (4), then far plane (4).
+  std::array<glm::dvec3, 8> frustumCorners{};
+  float depthClear = 1.0f;
+  VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
+};
+
+/// Builds the camera for a `width`×`height` image; fails on a degenerate camera.
+bool makeCamera(const Camera& camera, std::uint32_t width, std::uint32_t height,
+                DepthConvention depth, bool infiniteFar, CameraSetup& out, std::string& error);
+
+// ---------------------------------------------------------------------------------------------
+// Geometry: every object triangulated once and merged into one vertex and one index buffer
+// (one draw call for the whole scene: the forest has ~2,000 boxes).
+// ---------------------------------------------------------------------------------------------
+
+struct Vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec3 albedo;
+};
+
+struct SceneGeometry {
+  vk::Buffer vertices;
+  vk::Buffer indices;
+  // Closed meshes (boxes, spheres) first, drawn with back-face culling: for a closed mesh the
+  // nearest surface is always front-facing, so culling changes no depth and halves the triangles.
+  // Then open ones (plane quads, glTF meshes of unknown topology), drawn two-sided.
+  std::uint32_t closedIndexCount = 0;
+  std::uint32_t openIndexCount = 0;
+  // Positions of the finite objects (not infinite planes), one range per object: the shadow
+  // frusta are fitted to them.
+  std::vector<glm::vec3> casterPositions;
+  std::vector<std::array<std::uint32_t, 2>> casterRanges;  // {first, count}
+};
+
+bool buildSceneGeometry(const vk::GpuContext& gpu, VkCommandPool pool, const Scene& scene,
+                        SceneGeometry& out, std::string& error);
+
+/// Binds the geometry and draws it (pipeline and push constants already bound). `frontFace` is
+/// the winding of front faces in the framebuffer: counter-clockwise for the y-flipped camera
+/// projection, clockwise for the shadow projections, which do not flip y.
+void drawSceneGeometry(VkCommandBuffer cmd, const SceneGeometry& geometry, VkFrontFace frontFace);
+
+// ---------------------------------------------------------------------------------------------
+// Shadow frusta
+// ---------------------------------------------------------------------------------------------
+
+struct ShadowViews {
+  std::vector<glm::dmat4> worldToShadowClip;  // 1 (directional, spot) or 6 (point: +X −X +Y −Y +Z −Z)
+  // World size of one texel: directional, in scene units; spot/point, per unit of distance along
+  // the frustum axis (2 tan(fov/2) / N).
+  double footprint = 0.0;
+};
+
+/// Fits the light's shadow frusta to the casters and the visible volume (see renderer.h).
+ShadowViews fitShadowViews(const Scene& scene, const CameraSetup& camera,
+                           const SceneGeometry& geometry, std::uint32_t mapSize);
+
+/// Depth-only rasterisation of the whole scene into one shadow map (depth clamp on).
+class ShadowPass {
+ public:
+  bool create(const vk::GpuContext& gpu, std::string& error);
+  /// `target` in DEPTH_STENCIL_ATTACHMENT_OPTIMAL; cleared to 1 and rendered.
+  void record(VkCommandBuffer cmd, const SceneGeometry& geometry, const vk::Image& target,
+              const glm::mat4& worldToClip) const;
+
+ private:
+  vk::UniquePipelineLayout layout_;
+  vk::UniquePipeline pipeline_;
+};
+
+/// G-buffer: depth, albedo, normal.
+class GBufferPass {
+ public:
+  bool create(const vk::GpuContext& gpu, VkCompareOp depthCompare, std::string& error);
+  /// Targets in DEPTH_STENCIL_ATTACHMENT_OPTIMAL / COLOR_ATTACHMENT_OPTIMAL.
+  void record(VkCommandBuffer cmd, const SceneGeometry& geometry, const vk::Image& depth,
+              const vk::Image& albedo, const vk::Image& normal, const glm::mat4& clipFromWorld,
+              float depthClear) const;
+
+ private:
+  vk::UniquePipelineLayout layout_;
+  vk::UniquePipeline pipeline_;
+};
+
+/// Full-screen deferred lighting into the back buffer; one descriptor set per frame slot.
+class LightingPass {
+ public:
+  struct SlotInputs {
+    VkBuffer params = VK_NULL_HANDLE;  // gpu::LightingParams
+    VkImageView depth = VK_NULL_HANDLE;
+    VkImageView albedo = VK_NULL_HANDLE;
+    VkImageView normal = VK_NULL_HANDLE;
+    std::vector<VkImageView> shadowMaps;  // 1 or 6
+  };
+
+  bool create(const vk::GpuContext& gpu, VkFormat colorFormat, std::uint32_t slotCount,
+              std::string& error);
+  /// Points slot `slot`'s descriptor set at its images (after creation and after a resize).
+  void bindSlot(std::uint32_t slot, const SlotInputs& inputs);
+  /// G-buffer and shadow maps in SHADER_READ_ONLY_OPTIMAL, `target` in COLOR_ATTACHMENT_OPTIMAL.
+  void record(VkCommandBuffer cmd, std::uint32_t slot, const vk::Image& target) const;
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  vk::UniqueSampler pointSampler_;
+  vk::UniqueSampler shadowSampler_;
+  vk::UniqueDescriptorSetLayout setLayout_;
+  vk::UniqueDescriptorPool pool_;
+  std::vector<VkDescriptorSet> sets_;  // freed with the pool
+  vk::UniquePipelineLayout layout_;
+  vk::UniquePipeline pipeline_;
+};
+
+}  // namespace tyndall::host::detail

@@ -1,0 +1,203 @@
+// Every kind of invalid frame DESIGN.md lists: the status says why, nothing is recorded (the back
+// buffer is exactly what the host rendered), and no validation message appears.
+#include <cmath>
+#include <functional>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+#include "tyndall_effect.h"
+
+namespace tyndall::test {
+namespace {
+
+struct BadCase {
+  const char* name;
+  Status expected;
+  std::function<void(FrameDesc&, samples::FrameStorage&)> mutate;
+};
+
+// A post-process that builds the frame an engine would, breaks it, and records it.
+class BreakingEffect final : public host::PostProcessEffect {
+ public:
+  std::unique_ptr<Context> context;
+  const BadCase* badCase = nullptr;
+  Outcome outcome;
+
+  bool record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string&) override {
+    samples::FrameStorage storage;
+    FrameDesc frame = samples::makeFrameDesc(inputs, Profile::Reference, storage);
+    if (badCase != nullptr) badCase->mutate(frame, storage);
+    outcome = context->record(cmd, frame);
+    return true;  // the host goes on with its frame
+  }
+  bool resize(VkExtent2D, std::string&) override { return true; }
+};
+
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+std::vector<BadCase> badCases() {
+  using F = FrameDesc;
+  using S = samples::FrameStorage;
+  const Status invalid = Status::InvalidArgument;
+  return {
+      {"NaN scattering", invalid, [](F&, S& s) { s.medium[0].scattering[1] = kNaN; }},
+      {"Inf absorption", invalid, [](F&, S& s) { s.medium[0].absorption[0] = kInf; }},
+      {"negative scattering", invalid, [](F&, S& s) { s.medium[0].scattering[2] = -0.1f; }},
+      {"negative absorption", invalid, [](F&, S& s) { s.medium[0].absorption[2] = -1e-6f; }},
+      {"g out of range", invalid, [](F&, S& s) {
+         s.medium[0].phase = PhaseFunction::HenyeyGreenstein;
+         s.medium[0].g = 1.0f;
+       }},
+      {"no medium component", invalid, [](F& f, S&) { f.medium = {}; }},
+      {"five medium components", invalid, [](F& f, S& s) {
+         s.medium.assign(5, s.medium[0]);
+         f.medium = s.medium;
+       }},
+      {"NaN light colour", invalid, [](F& f, S&) { f.light.color[0] = kNaN; }},
+      {"negative intensity", invalid, [](F& f, S&) { f.light.intensity = -1.0f; }},
+      {"zero light direction", invalid, [](F& f, S&) { f.light.direction = {0.0f, 0.0f, 0.0f}; }},
+      {"spot cone inner > outer", invalid, [](F& f, S&) {
+         f.light.type = LightType::Spot;
+         f.light.innerConeRadians = 0.5f;
+         f.light.outerConeRadians = 0.4f;
+       }},
+      {"no shadow map", invalid, [](F& f, S&) { f.shadowMaps = {}; }},
+      {"point light with one shadow map", invalid, [](F& f, S&) { f.light.type = LightType::Point; }},
+      {"zero depth extent", invalid, [](F& f, S&) { f.depth.extent = {0, 0}; }},
+      {"null depth view", invalid, [](F& f, S&) { f.depth.view = VK_NULL_HANDLE; }},
+      {"null back buffer", invalid, [](F& f, S&) { f.color.image = VK_NULL_HANDLE; }},
+      {"null shadow map", invalid, [](F&, S& s) { s.shadowMaps[0].depth.image = VK_NULL_HANDLE; }},
+      {"mismatched back buffer size", invalid, [](F& f, S&) { f.color.extent.width += 1; }},
+      {"mismatched depth size", invalid, [](F& f, S&) { f.depth.extent.height += 1; }},
+      {"undefined depth layout", invalid, [](F& f, S&) { f.depth.layout = VK_IMAGE_LAYOUT_UNDEFINED; }},
+      {"colour format as depth", Status::UnsupportedFormat, [](F& f, S&) { f.depth.format = VK_FORMAT_R8G8B8A8_UNORM; }},
+      {"depth format as back buffer", Status::UnsupportedFormat, [](F& f, S&) { f.color.format = VK_FORMAT_D32_SFLOAT; }},
+      {"non-square shadow map", invalid, [](F&, S& s) { s.shadowMaps[0].depth.extent.width /= 2; }},
+      {"near >= far", invalid, [](F& f, S&) {
+         // Standard-Z perspective with near 0.1 and far −5: the far plane behind the camera.
+         const float n = 0.1f, fa = -5.0f;
+         f.camera.projection = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, fa / (n - fa), -1, 0, 0, fa * n / (n - fa), 0};
+       }},
+      {"near == far", invalid, [](F& f, S&) {
+         // The standard-Z formula with near = far divides by zero.
+         const float n = 1.0f, fa = 1.0f;
+         f.camera.projection = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, fa / (n - fa), -1, 0, 0, fa * n / (n - fa), 0};
+       }},
+      {"singular projection", invalid, [](F& f, S&) { f.camera.projection = Mat4{}; }},
+      {"orthographic projection", invalid, [](F& f, S&) {
+         f.camera.projection = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+       }},
+      {"NaN view matrix", invalid, [](F& f, S&) { f.camera.view[5] = kNaN; }},
+      {"singular view matrix", invalid, [](F& f, S&) { f.camera.view = Mat4{}; }},
+      {"singular shadow matrix", invalid, [](F&, S& s) { s.shadowMaps[0].worldToShadowClip = Mat4{}; }},
+      {"zero infinite-far sky distance", invalid, [](F& f, S&) {
+         // Standard-Z with the far plane at infinity.
+         f.camera.projection = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, -1, 0, 0, -0.1f, 0};
+         f.camera.infiniteFarSkyDistance = 0.0f;
+       }},
+      {"light-colour texture", Status::UnsupportedFeature, [](F& f, S&) { f.lightColor = f.color; }},
+      {"AOV with zero extent", invalid, [](F& f, S&) { f.scatteringOutput.extent = {0, 0}; }},
+      {"zero auto budget", invalid, [](F& f, S&) { f.autoBudgetMilliseconds = 0.0f; }},
+  };
+}
+
+TEST(BadInputs, EachCaseRecordsNothingAndSaysWhy) {
+  const host::Scene scene = loadTestScene("analytic-mixed");
+  host::RenderSettings settings;
+  settings.width = 32;
+  settings.height = 18;
+  settings.shadowMapSize = 256;
+  settings.aovImages = true;
+  std::string error;
+  host::Device& device = validatedDevice();
+
+  // What the host renders without any post-process.
+  std::unique_ptr<host::Renderer> plainRenderer = host::Renderer::create(device, scene, settings, error);
+  ASSERT_TRUE(plainRenderer) << error;
+  ASSERT_TRUE(plainRenderer->renderFrame(error)) << error;
+  plainRenderer->waitIdle();
+  host::ImageRgba32f plain;
+  ASSERT_TRUE(plainRenderer->readBackBuffer(plain, error)) << error;
+
+  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
+  ASSERT_TRUE(renderer) << error;
+  BreakingEffect effect;
+  ContextDesc desc;
+  desc.instance = device.instance();
+  desc.physicalDevice = device.physicalDevice();
+  desc.device = device.device();
+  desc.getInstanceProcAddr = device.getInstanceProcAddr();
+  desc.getDeviceProcAddr = device.getDeviceProcAddr();
+  desc.queueFamilyIndex = device.queueFamily();
+  desc.maxFramesInFlight = settings.framesInFlight;
+  desc.outputExtent = {settings.width, settings.height};
+  desc.backBufferFormat = settings.backBufferFormat;
+  ASSERT_TRUE(Context::create(desc, effect.context).ok());
+  renderer->addPostProcess(&effect);
+
+  // The unbroken frame records and changes the picture: the comparison below can fail.
+  ASSERT_TRUE(renderer->renderFrame(error)) << error;
+  renderer->waitIdle();
+  ASSERT_TRUE(effect.outcome.ok()) << effect.outcome.message;
+  host::ImageRgba32f good;
+  ASSERT_TRUE(renderer->readBackBuffer(good, error)) << error;
+  ASSERT_GT(compareRgb(good, plain).relativeRmse, 0.01);
+
+  for (const BadCase& bad : badCases()) {
+    SCOPED_TRACE(bad.name);
+    effect.badCase = &bad;
+    const std::uint64_t framesBefore = effect.context->stats().frameIndex;
+    ASSERT_TRUE(renderer->renderFrame(error)) << error;
+    renderer->waitIdle();
+    EXPECT_FALSE(effect.outcome.ok());
+    EXPECT_EQ(effect.outcome.status, bad.expected) << to_string(effect.outcome.status) << ": " << effect.outcome.message;
+    EXPECT_FALSE(effect.outcome.message.empty());
+    EXPECT_EQ(effect.context->stats().frameIndex, framesBefore) << "a rejected frame must not count";
+    host::ImageRgba32f out;
+    ASSERT_TRUE(renderer->readBackBuffer(out, error)) << error;
+    EXPECT_EQ(compareRgb(out, plain).relativeMax, 0.0) << "a rejected frame must leave the back buffer alone";
+    expectNoValidationMessages();
+  }
+}
+
+TEST(BadInputs, ContextCreationErrors) {
+  host::Device& device = validatedDevice();
+  ContextDesc desc;
+  desc.instance = device.instance();
+  desc.physicalDevice = device.physicalDevice();
+  desc.device = device.device();
+  desc.getInstanceProcAddr = device.getInstanceProcAddr();
+  desc.getDeviceProcAddr = device.getDeviceProcAddr();
+  desc.queueFamilyIndex = device.queueFamily();
+  desc.outputExtent = {16, 16};
+  std::unique_ptr<Context> context;
+
+  ContextDesc noDevice = desc;
+  noDevice.device = VK_NULL_HANDLE;
+  EXPECT_EQ(Context::create(noDevice, context).status, Status::InvalidArgument);
+  ContextDesc zeroExtent = desc;
+  zeroExtent.outputExtent = {0, 16};
+  EXPECT_EQ(Context::create(zeroExtent, context).status, Status::InvalidArgument);
+  ContextDesc tooManyFrames = desc;
+  tooManyFrames.maxFramesInFlight = 9;
+  EXPECT_EQ(Context::create(tooManyFrames, context).status, Status::InvalidArgument);
+  ContextDesc badFamily = desc;
+  badFamily.queueFamilyIndex = 1000;
+  EXPECT_EQ(Context::create(badFamily, context).status, Status::InvalidArgument);
+  ContextDesc badFormat = desc;
+  badFormat.backBufferFormat = VK_FORMAT_D32_SFLOAT;
+  EXPECT_EQ(Context::create(badFormat, context).status, Status::UnsupportedFormat);
+  EXPECT_FALSE(context);
+
+  ASSERT_TRUE(Context::create(desc, context).ok());
+  EXPECT_EQ(context->resize({0, 0}).status, Status::InvalidArgument);
+  EXPECT_EQ(context->record(VK_NULL_HANDLE, FrameDesc{}).status, Status::InvalidArgument);
+  context.reset();
+  expectNoValidationMessages();
+}
+
+}  // namespace
+}  // namespace tyndall::test

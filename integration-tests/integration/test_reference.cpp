@@ -43,6 +43,9 @@ TEST_P(ReferenceVsAnalytic, InScatteringAndTransmittance) {
   EXPECT_GT(lin.meanReference, 0.0) << "the scene must scatter light";
   EXPECT_EQ(lin.nonFinite, 0u);
   EXPECT_LE(lin.relativeRmse, 0.02) << describe(lin);
+  // Away from silhouettes (where the tessellated and the exact shapes see different surfaces)
+  // the two agree far more closely: measured p99 0.02–0.10%.
+  EXPECT_LE(lin.relativeP99, 0.005) << describe(lin);
   EXPECT_EQ(t.nonFinite, 0u);
   // T = exp(−σ_t s) depends only on the depth buffer: it agrees to float precision except where
   // a tessellated silhouette and the exact shape disagree on a pixel centre (well under 1% of

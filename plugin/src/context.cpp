@@ -252,6 +252,9 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
 
+  // Each pass's timestamps are written before its barriers: a CPU driver (lavapipe) takes a
+  // timestamp when it next flushes, and a barrier flushes, so the stamps then bracket the work.
+  timer.beginPass(gpu, cmd, "reference_scattering");
   // Tyndall's targets: the previous frame's reads must finish before they are overwritten;
   // the old contents are discarded.
   for (const OwnedImage* target : {&scattering, &transmittance}) {
@@ -283,8 +286,9 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     acquireDepth(map, bindings.shadowLayouts[i]);
   }
 
-  timer.beginPass(gpu, cmd, "reference_scattering");
   reference.record(gpu, cmd, slot, bindings, extent);
+  timer.endPass(gpu, cmd);
+  stats.passesRecorded.emplace_back("reference_scattering");
   releaseDepth(frame.depth, bindings.depthLayout);
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
     releaseDepth(frame.shadowMaps[i].depth, bindings.shadowLayouts[i]);
@@ -295,16 +299,14 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                  {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                   VK_ACCESS_SHADER_READ_BIT});
   }
-  timer.endPass(gpu, cmd);
-  stats.passesRecorded.emplace_back("reference_scattering");
 
   // Composite into the back buffer.
   const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   const VkPipelineStageFlags output = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkAccessFlags blend = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  timer.beginPass(gpu, cmd, "composite");
   imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
                hostBefore(frame.color), {attachment, output, blend});
-  timer.beginPass(gpu, cmd, "composite");
   composite.record(gpu, cmd, slot, scattering.view, transmittance.view, frame.color, attachment);
   timer.endPass(gpu, cmd);
   stats.passesRecorded.emplace_back("composite");

@@ -9,6 +9,7 @@ packages=(
   glslang-tools spirv-tools
   libglm-dev libopencolorio-dev libopenexr-dev libimath-dev libstb-dev
   nlohmann-json3-dev libtinygltf-dev libgtest-dev libgmock-dev
+  python3  # scripts/measure-reference.sh, scripts/generate-forest.py
 )
 
 missing=()

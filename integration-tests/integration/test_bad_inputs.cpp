@@ -125,17 +125,7 @@ TEST(BadInputs, EachCaseRecordsNothingAndSaysWhy) {
   std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
   ASSERT_TRUE(renderer) << error;
   BreakingEffect effect;
-  ContextDesc desc;
-  desc.instance = device.instance();
-  desc.physicalDevice = device.physicalDevice();
-  desc.device = device.device();
-  desc.getInstanceProcAddr = device.getInstanceProcAddr();
-  desc.getDeviceProcAddr = device.getDeviceProcAddr();
-  desc.queueFamilyIndex = device.queueFamily();
-  desc.maxFramesInFlight = settings.framesInFlight;
-  desc.outputExtent = {settings.width, settings.height};
-  desc.backBufferFormat = settings.backBufferFormat;
-  ASSERT_TRUE(Context::create(desc, effect.context).ok());
+  ASSERT_TRUE(Context::create(samples::contextDescFor(device, settings), effect.context).ok());
   renderer->addPostProcess(&effect);
 
   // The unbroken frame records and changes the picture: the comparison below can fail.
@@ -164,15 +154,11 @@ TEST(BadInputs, EachCaseRecordsNothingAndSaysWhy) {
 }
 
 TEST(BadInputs, ContextCreationErrors) {
-  host::Device& device = validatedDevice();
-  ContextDesc desc;
-  desc.instance = device.instance();
-  desc.physicalDevice = device.physicalDevice();
-  desc.device = device.device();
-  desc.getInstanceProcAddr = device.getInstanceProcAddr();
-  desc.getDeviceProcAddr = device.getDeviceProcAddr();
-  desc.queueFamilyIndex = device.queueFamily();
-  desc.outputExtent = {16, 16};
+  host::RenderSettings settings;
+  settings.width = 16;
+  settings.height = 16;
+  ContextDesc desc = samples::contextDescFor(validatedDevice(), settings);
+  desc.backBufferFormat = VK_FORMAT_UNDEFINED;
   std::unique_ptr<Context> context;
 
   ContextDesc noDevice = desc;

@@ -72,10 +72,7 @@ std::vector<MediumComponent> toMedium(const std::vector<host::MediumComponent>& 
   return out;
 }
 
-std::unique_ptr<TyndallEffect> TyndallEffect::create(host::Device& device, const host::RenderSettings& settings,
-                                                     Profile profile, std::string& error) {
-  auto effect = std::unique_ptr<TyndallEffect>(new TyndallEffect());
-  effect->profile_ = profile;
+ContextDesc contextDescFor(host::Device& device, const host::RenderSettings& settings) {
   ContextDesc desc;
   desc.instance = device.instance();
   desc.physicalDevice = device.physicalDevice();
@@ -86,6 +83,14 @@ std::unique_ptr<TyndallEffect> TyndallEffect::create(host::Device& device, const
   desc.maxFramesInFlight = settings.framesInFlight;
   desc.outputExtent = {settings.width, settings.height};
   desc.backBufferFormat = settings.backBufferFormat;
+  return desc;
+}
+
+std::unique_ptr<TyndallEffect> TyndallEffect::create(host::Device& device, const host::RenderSettings& settings,
+                                                     Profile profile, std::string& error) {
+  auto effect = std::unique_ptr<TyndallEffect>(new TyndallEffect());
+  effect->profile_ = profile;
+  ContextDesc desc = contextDescFor(device, settings);
   desc.messageCallback = &TyndallEffect::onMessage;
   desc.messageUserData = effect.get();
   if (Outcome outcome = Context::create(desc, effect->context_); !outcome) {

@@ -33,6 +33,9 @@ class TyndallEffect final : public host::PostProcessEffect {
   std::vector<std::string> messages_;
 };
 
+/// The ContextDesc for the host's device and render settings (what an engine fills in once).
+ContextDesc contextDescFor(host::Device& device, const host::RenderSettings& settings);
+
 /// Converts the host's scene description into Tyndall's (radians, float, spans).
 LightDesc toLightDesc(const host::Light& light);
 std::vector<MediumComponent> toMedium(const std::vector<host::MediumComponent>& medium);

@@ -173,3 +173,29 @@ TEST(Profiles, EveryProfileRunsAndSaysWhichTechnique) {
 
 }  // namespace
 }  // namespace tyndall::test
+
+namespace tyndall::test {
+namespace {
+
+// Tiny and odd output extents: every pixel is written, nothing is read out of bounds.
+TEST(Extents, TinyAndOddSizes) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  for (auto [w, h] : {std::pair{1u, 1u}, std::pair{3u, 7u}, std::pair{13u, 5u}}) {
+    SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h));
+    samples::RenderOptions options = smallOptions(w, h);
+    const samples::RenderResult result = renderWithAovs(scene, options);
+    ASSERT_EQ(result.scattering.width, w);
+    ASSERT_EQ(result.scattering.height, h);
+    analytic::RgbImage reference;
+    analytic::RgbImage transmittance;
+    std::string error;
+    ASSERT_TRUE(analytic::renderAnalytic(scene, w, h, reference, transmittance, error)) << error;
+    const ErrorStats stats = compareRgb(result.scattering, reference.rgb);
+    EXPECT_EQ(stats.nonFinite, 0u);
+    EXPECT_LE(stats.relativeRmse, 0.02) << describe(stats);
+  }
+  expectNoValidationMessages();
+}
+
+}  // namespace
+}  // namespace tyndall::test

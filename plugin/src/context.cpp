@@ -1,6 +1,7 @@
 // The context: what is created once, what is rebuilt on resize, and the per-frame recording.
 #include <array>
 #include <cstring>
+#include <new>
 
 #include "composite/composite_pass.h"
 #include "frame_setup.h"
@@ -134,6 +135,17 @@ void Context::Impl::destroyAll() {
 }
 
 Outcome Context::create(const ContextDesc& desc, std::unique_ptr<Context>& out) {
+  try {
+    return createContext(desc, out);
+  } catch (const std::bad_alloc&) {
+    out.reset();
+    Outcome outcome = vkFailed("create", VK_ERROR_OUT_OF_HOST_MEMORY);
+    outcome.message = "create: out of host memory";
+    return outcome;
+  }
+}
+
+Outcome Context::createContext(const ContextDesc& desc, std::unique_ptr<Context>& out) {
   out.reset();
   auto impl = std::make_unique<Impl>();
   impl->desc = desc;
@@ -208,7 +220,15 @@ Outcome Context::record(VkCommandBuffer commandBuffer, const FrameDesc& frame) {
   if (commandBuffer == VK_NULL_HANDLE) {
     return impl_->fail(failure(Status::InvalidArgument, "record: commandBuffer is null"));
   }
-  return impl_->record(commandBuffer, frame);
+  // No exception crosses the API; the only one the recording can raise is an allocation failure
+  // of the host heap (stats strings and vectors).
+  try {
+    return impl_->record(commandBuffer, frame);
+  } catch (const std::bad_alloc&) {
+    Outcome outcome = vkFailed("record", VK_ERROR_OUT_OF_HOST_MEMORY);
+    outcome.message = "record: out of host memory";
+    return outcome;
+  }
 }
 
 Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {

@@ -272,6 +272,7 @@ class Context {
 
  private:
   explicit Context(std::unique_ptr<Impl> impl);
+  static Outcome createContext(const ContextDesc& desc, std::unique_ptr<Context>& out);
   std::unique_ptr<Impl> impl_;
 };
 

@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
-cmake --build build -j"$(nproc)"
+cmake --build build --target tyndall-render -j"$(nproc)"
 mkdir -p out
 build/samples/tyndall-render samples/scenes/pillars.json \
   --output out/pillars.png --output-hdr out/pillars.exr \

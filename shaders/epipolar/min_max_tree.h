@@ -26,8 +26,16 @@
 // ## Depth conventions (those of reference_march.glsl)
 // A point is lit when z ≤ d. A depth d ≥ 1 (the clear value: no occluder) lights every point, even
 // z > 1 beyond the map's far plane. Texels outside the map read as 1: outside a directional map
-// everything is lit. The ray's depth must be linear in u: true for a directional light, and for a
-// spot light too when z means z/w (a projective map sends the 3D line to a line in (u, z/w)).
+// everything is lit (a spot light's rays are truncated to its frustum before they get here). The
+// ray's depth must be linear in u: true for a directional light, and for a spot light too when z
+// means z/w (a projective map sends the 3D line to a line in (u, z/w)); a spot light's distance is
+// not linear in u, hence TYN_MIN_MAX_INTEGRATE below.
+//
+// ## Accuracy against the Reference (printed by the unit test MinMaxConservative.*)
+// The tree's decisions never contradict the texel-exact walk (193k decisions checked). The leaf
+// rule's single sample per cell can, only in cells whose footprint is mixed: 0.1–0.35% of the
+// marched length on box and smooth maps, 1.5–2.2% on per-texel noise (lit integral off by
+// 0.1–0.3% and 0.6–0.9% of the unshadowed integral respectively; 32² maps, seven seeds).
 //
 // ## Storage: one texture row per slice, level after level
 // L = 2^n samples, 2 ≤ L ≤ 4096 (pad a shorter slice up to a power of two with the clear value 1:
@@ -35,8 +43,8 @@
 // cells [i·2^(l+1), (i+1)·2^(l+1)); level 0 = pairs of cells, level n−1 = the whole slice. Level l
 // starts at column L − (L >> l) of the row, so the full tree takes L − 1 texels (≤ 4095: fits one
 // row of a 4096-wide texture), and a tree built up to `top_level` only takes
-// tyn_min_max_row_length(L, top_level). Format: RG32F (x = min, y = max). RG16F also works only if
-// min is rounded down and max up on store, and the plain march's samples then still lie inside.
+// tyn_min_max_row_length(L, top_level). Format: RG32F (x = min, y = max). IMPORTANT: with RG16F,
+// round min down and max up when storing, or a node may no longer bound its samples.
 //
 // ## Accessors (GLSL has no pointers): define before including, as needed
 //   TYN_MIN_MAX_SHADOW_TEXEL(texel)  float: shadow-map depth of ivec2 texel, 1.0 outside the map
@@ -201,11 +209,18 @@ TYN_FUNC float tyn_min_max_distance_at(TynMinMaxRay ray, float u) {
   return ray.t_begin + (u - ray.u_begin) * ray.t_slope;
 }
 
-// ∫ e^{−σ_t t} dt over the view distances of u ∈ [a, b].
+// ∫ e^{−σ_t t} dt over the view distances of u ∈ [a, b]
+//   = e^{−σ t_near} · len · (1 − e^{−σ len}) / (σ len),  len = (b − a)·|dt/du|.
+// tyn_transmittance_integral's form, but fed the length directly: a difference of two distances
+// carries float's absolute error of the whole distance (1.5e-5 at t = 200), which would swamp a
+// short lit section (measured: 0.3% on a 4e-4 section at t = 43).
 TYN_FUNC vec3 tyn_min_max_directional_integral(TynMinMaxRay ray, float a, float b) {
-  float ta = tyn_min_max_distance_at(ray, a);
-  float tb = tyn_min_max_distance_at(ray, b);
-  return tyn_transmittance_integral(max(min(ta, tb), 0.0f), max(max(ta, tb), 0.0f), ray.sigma_t);
+  float len = max(b - a, 0.0f) * abs(ray.t_slope);
+  float t_near = max(tyn_min_max_distance_at(ray, ray.t_slope >= 0.0f ? a : b), 0.0f);
+  vec3 x = ray.sigma_t * len;
+  vec3 ratio = vec3(tyn_one_minus_exp_over_x(x.x), tyn_one_minus_exp_over_x(x.y),
+                    tyn_one_minus_exp_over_x(x.z));
+  return exp(-ray.sigma_t * t_near) * len * ratio;
 }
 
 // ---- The shadow test on a section [a, b] with depths za = z(a), zb = z(b) ----

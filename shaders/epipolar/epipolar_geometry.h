@@ -1,0 +1,418 @@
+// Epipolar geometry of the light-shaft technique (engelhardt2010 §4.1, §5.1; yusov2013 "Sample
+// generation", "Optimized sample placement", "Slice origin and direction"), as pure functions that
+// the compute passes and the unit tests share.
+//
+// Conventions
+// - Screen positions are Vulkan NDC: x right, y DOWN, both in [−1, 1]; pixel (px, py) has its
+//   centre at ((px + 0.5)/W·2 − 1, (py + 0.5)/H·2 − 1). `extent` is (W, H) in pixels, W, H ≥ 2.
+// - Everything is built on the "sample rectangle" [−1 + 1/W, 1 − 1/W] × [−1 + 1/H, 1 − 1/H]:
+//   the hull of the pixel centres (yusov2013 "Optimized sample placement"). A sample outside it
+//   would interpolate nothing a pixel needs.
+// - The epipole (projected light) is kept homogeneous, vec4(x, y, w, side) with |(x, y, w)| = 1
+//   and w ≥ 0, so that an epipole at (or near) infinity needs no special case: the line through
+//   the epipole and a screen point p runs along w·p − (x, y), which stays well-defined as w → 0.
+//   side = 1: light in front of the camera; −1: behind (the epipole is mirrored and light shafts
+//   converge to it on screen); 0: degenerate (light at the camera position, or a directional light
+//   along an orthographic camera's axis): the epipole is then taken at the screen centre, and
+//   sampling reduces to a radial screen-space subsampling (engelhardt2010 §4.1).
+// - Slice i of N (any N ≥ 1; coverage of every pixel by a valid slice needs
+//   N ≥ perimeter / min(W − 1, H − 1), i.e. N ≥ 6 for 16:9; use ≥ 64 in practice) exits the
+//   screen at perimeter distance i·P/N pixels from the top-left corner of the sample rectangle,
+//   clockwise on screen (top edge left → right, right edge top → bottom, bottom edge right → left,
+//   left edge bottom → top), P = 2(W − 1) + 2(H − 1). Evenly by LENGTH in pixels rather than N/4
+//   per edge (Yusov's by-index choice): neighbouring slices are then equally far apart, in pixels,
+//   along every edge whatever the aspect ratio, so the gap the unwarp pass interpolates across is
+//   bounded by the same P/N pixels everywhere. The slice coordinate is continuous: slice c ∈
+//   [0, N) exits at c·P/N, so the unwarp pass inverts it exactly, and slice N wraps to slice 0.
+// - Sampling along a slice always goes from the epipole side (entry) to the border (exit),
+//   whether the light is in front of or behind the camera; for a light behind the camera, light
+//   therefore travels on screen from the exit towards the entry. Ray marching does not care,
+//   and the sample placement and its inverse stay one formula.
+#ifndef TYNDALL_EPIPOLAR_GEOMETRY_H
+#define TYNDALL_EPIPOLAR_GEOMETRY_H
+
+#include "common/cpp_glsl.h"
+
+TYN_BEGIN
+
+// End points of a culled slice: far outside any screen, so that a pass can tell them from a real
+// slice after a round trip through an RGBA32F texture (tyn_slice_valid).
+TYN_CONST float TYN_EPIPOLAR_INVALID_COORD = -1.0e4f;
+// A slice whose visible part is shorter than this many pixels is culled when the epipole is off
+// screen: it is a line grazing a corner or an edge, which can hold no sample a pixel needs (its
+// neighbour covers the pixels there), and float rounding of the clip (~1e-4 px at 4K) cannot
+// make a slice with no visible part look valid.
+TYN_CONST float TYN_EPIPOLAR_MIN_SLICE_PIXELS = 1.0e-2f;
+// "No bound" for the line/rectangle clip; finite, so products with 0 stay 0.
+TYN_CONST float TYN_EPIPOLAR_UNBOUNDED = 1.0e30f;
+// Epipole density factors beyond this make the first sample spacing vanish in float.
+TYN_CONST float TYN_EPIPOLAR_MAX_DENSITY = 1000.0f;
+
+// ---------------------------------------------------------------------------------------------
+// Screen
+
+// NDC of a point given in pixel coordinates (pixel centres at half-integers), written exactly as
+// the passes compute pixel centres, so exit points and pixel centres agree bit for bit.
+TYN_FUNC vec2 tyn_ndc_from_pixel(vec2 pixel, vec2 extent) { return pixel / extent * 2.0f - 1.0f; }
+
+TYN_FUNC vec2 tyn_pixel_from_ndc(vec2 ndc, vec2 extent) { return (ndc + 1.0f) * 0.5f * extent; }
+
+// The sample rectangle (lo.x, lo.y, hi.x, hi.y): the first and last pixel centres.
+TYN_FUNC vec4 tyn_epipolar_screen_rect(vec2 extent) {
+  return vec4(tyn_ndc_from_pixel(vec2(0.5f), extent), tyn_ndc_from_pixel(extent - 0.5f, extent));
+}
+
+// Parameter interval [t0, t1] of the line origin + t·dir inside the rectangle (slab method);
+// empty when t0 > t1. An axis along which the line does not move constrains nothing if the line
+// is inside that slab, and empties the interval otherwise.
+TYN_FUNC vec2 tyn_line_rect_interval(vec2 origin, vec2 dir, vec4 rect) {
+  float t0 = -TYN_EPIPOLAR_UNBOUNDED;
+  float t1 = TYN_EPIPOLAR_UNBOUNDED;
+  if (dir.x != 0.0f) {
+    float ta = (rect.x - origin.x) / dir.x;
+    float tb = (rect.z - origin.x) / dir.x;
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  } else if (origin.x < rect.x || origin.x > rect.z) {
+    t0 = TYN_EPIPOLAR_UNBOUNDED;
+    t1 = -TYN_EPIPOLAR_UNBOUNDED;
+  }
+  if (dir.y != 0.0f) {
+    float ta = (rect.y - origin.y) / dir.y;
+    float tb = (rect.w - origin.y) / dir.y;
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  } else if (origin.y < rect.y || origin.y > rect.w) {
+    t0 = TYN_EPIPOLAR_UNBOUNDED;
+    t1 = -TYN_EPIPOLAR_UNBOUNDED;
+  }
+  return vec2(t0, t1);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Epipole
+
+// A directional light is the point at infinity in the direction it comes from (−light_dir).
+TYN_FUNC vec4 tyn_epipole_clip_directional(mat4 view_proj, vec3 light_dir) {
+  return view_proj * vec4(-light_dir, 0.0f);
+}
+
+TYN_FUNC vec4 tyn_epipole_clip_local(mat4 view_proj, vec3 light_pos) {
+  return view_proj * vec4(light_pos, 1.0f);
+}
+
+// The epipole from the light's clip position (either function above). Only x, y, w matter: the
+// depth row differs between standard, reverse-Z and infinite projections but not where a point
+// lands on screen. Negating (x, y, w) names the same screen point, so a light behind the camera
+// (w < 0) is stored with w ≥ 0: its mirrored epipole, where the shafts converge. Scaling by the
+// largest component before normalising keeps far lights (huge components) and lights near the
+// camera (tiny ones) in float range.
+TYN_FUNC vec4 tyn_epipole(vec4 light_clip) {
+  vec3 h = vec3(light_clip.x, light_clip.y, light_clip.w);
+  float largest = max(max(abs(h.x), abs(h.y)), abs(h.z));
+  if (!(largest > 0.0f)) return vec4(0.0f, 0.0f, 1.0f, 0.0f);  // degenerate: screen centre
+  float side = light_clip.w < 0.0f ? -1.0f : 1.0f;
+  return vec4(normalize(h * (side / largest)), side);
+}
+
+TYN_FUNC bool tyn_epipole_behind(vec4 epipole) { return epipole.w < 0.0f; }
+
+// The epipole in NDC. Only meaningful when epipole.z > 0; at infinity (z = 0) it returns a huge
+// but finite point in the right direction.
+TYN_FUNC vec2 tyn_epipole_ndc(vec4 epipole) {
+  return vec2(epipole.x, epipole.y) / max(epipole.z, 1.0e-30f);
+}
+
+// Inside the sample rectangle (borders included); tested as lo·w ≤ (x, y) ≤ hi·w to need no
+// division, so an epipole at infinity is simply off screen.
+TYN_FUNC bool tyn_epipole_on_screen(vec4 epipole, vec2 extent) {
+  vec4 rect = tyn_epipolar_screen_rect(extent);
+  return epipole.z > 0.0f && epipole.x >= rect.x * epipole.z && epipole.x <= rect.z * epipole.z &&
+         epipole.y >= rect.y * epipole.z && epipole.y <= rect.w * epipole.z;
+}
+
+// Direction (not normalised) of the epipolar line through p, pointing away from the epipole:
+// w·(p − epipole) for a finite epipole, and −(x, y) (away from the point at infinity) as w → 0.
+TYN_FUNC vec2 tyn_epipolar_direction(vec4 epipole, vec2 p) {
+  return epipole.z * p - vec2(epipole.x, epipole.y);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Exit points
+
+// P: perimeter of the sample rectangle in pixels.
+TYN_FUNC float tyn_border_length_pixels(vec2 extent) {
+  return 2.0f * ((extent.x - 1.0f) + (extent.y - 1.0f));
+}
+
+// Exit point of (continuous) slice `slice` ∈ [0, N], on the sample rectangle; see the header
+// comment for the order. Computed in pixel coordinates so that the fixed coordinate of each edge
+// is bit-identical to tyn_epipolar_screen_rect's bound.
+TYN_FUNC vec2 tyn_exit_point(float slice, uint num_slices, vec2 extent) {
+  vec2 size = extent - 1.0f;  // edge lengths in pixels
+  float s = slice / float(num_slices) * tyn_border_length_pixels(extent);
+  vec2 q;
+  if (s <= size.x) {
+    q = vec2(0.5f + s, 0.5f);
+  } else if (s <= size.x + size.y) {
+    q = vec2(extent.x - 0.5f, 0.5f + (s - size.x));
+  } else if (s <= 2.0f * size.x + size.y) {
+    q = vec2(extent.x - 0.5f - (s - size.x - size.y), extent.y - 0.5f);
+  } else {
+    q = vec2(0.5f, extent.y - 0.5f - min(s - 2.0f * size.x - size.y, size.y));
+  }
+  return tyn_ndc_from_pixel(q, extent);
+}
+
+// Inverse of tyn_exit_point: the continuous slice coordinate in [0, N) of a point on the sample
+// rectangle. The edge is the nearest one, so a point a rounding error off the border still maps
+// to the right place; the perimeter position is continuous across corners, so the choice at a
+// corner does not matter. The top-left corner is 0 (reached from the left edge as P, wrapped).
+TYN_FUNC float tyn_border_slice_coordinate(vec2 border_point, uint num_slices, vec2 extent) {
+  vec2 size = extent - 1.0f;
+  vec2 from_lo = tyn_pixel_from_ndc(border_point, extent) - 0.5f;  // from the left / top edge
+  vec2 from_hi = size - from_lo;                                  // from the right / bottom edge
+  float d_top = abs(from_lo.y);
+  float d_right = abs(from_hi.x);
+  float d_bottom = abs(from_hi.y);
+  float d_left = abs(from_lo.x);
+  float nearest = min(min(d_top, d_right), min(d_bottom, d_left));
+  float s;
+  if (nearest == d_top) {
+    s = clamp(from_lo.x, 0.0f, size.x);
+  } else if (nearest == d_right) {
+    s = size.x + clamp(from_lo.y, 0.0f, size.y);
+  } else if (nearest == d_bottom) {
+    s = size.x + size.y + clamp(from_hi.x, 0.0f, size.x);
+  } else {
+    s = 2.0f * size.x + size.y + clamp(from_hi.y, 0.0f, size.y);
+  }
+  float n = float(num_slices);
+  float c = s / tyn_border_length_pixels(extent) * n;
+  return c >= n ? c - n : c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Slice end points
+
+TYN_FUNC bool tyn_slice_valid(vec4 end_points) { return end_points.x > TYN_EPIPOLAR_INVALID_COORD * 0.5f; }
+
+// End points (entry.xy, exit.xy) of the slice whose exit point is `exit_point` (from
+// tyn_exit_point). Returns false, and the TYN_EPIPOLAR_INVALID_COORD sentinel, when the slice is
+// culled: its segment from the epipole to the exit point misses the sample rectangle (or only
+// grazes it for less than TYN_EPIPOLAR_MIN_SLICE_PIXELS), which happens only when the epipole is
+// off screen; e.g. every exit point on the edges facing an off-screen epipole is culled, because
+// the line enters the screen there instead of leaving it.
+// - epipole on screen: entry = epipole, always valid (a slice may then be arbitrarily short, down
+//   to zero length when the epipole lies on the border at the exit point; its samples all sit on
+//   the epipole, which is harmless).
+// - otherwise: entry = the first crossing of the segment epipole → exit with the rectangle.
+TYN_FUNC bool tyn_slice_end_points(vec4 epipole, vec2 exit_point, vec2 extent,
+                                   TYN_INOUT(vec4) end_points) {
+  if (tyn_epipole_on_screen(epipole, extent)) {
+    end_points = vec4(tyn_epipole_ndc(epipole), exit_point);
+    return true;
+  }
+  // The line exit + s·d with d pointing away from the epipole: the epipole is at s = −1/w (at −∞
+  // for w = 0) and the exit point at s = 0, so the segment is s ∈ [−1/w, 0].
+  vec2 d = tyn_epipolar_direction(epipole, exit_point);
+  vec2 range = tyn_line_rect_interval(exit_point, d, tyn_epipolar_screen_rect(extent));
+  float s_entry = epipole.z > 0.0f ? max(range.x, -1.0f / epipole.z) : range.x;
+  float s_exit = min(range.y, 0.0f);
+  float visible_pixels = (s_exit - s_entry) * length(d * extent * 0.5f);
+  if (!(visible_pixels > TYN_EPIPOLAR_MIN_SLICE_PIXELS)) {
+    end_points = vec4(TYN_EPIPOLAR_INVALID_COORD);
+    return false;
+  }
+  end_points = vec4(exit_point + d * s_entry, exit_point);
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sample placement: sample k of a slice with `sample_count` valid samples lies at
+// entry·(1 − f) + exit·f with f = tyn_sample_fraction(k); written that way (not mix) so that
+// k = 0 and k = sample_count − 1 land exactly on the entry and the exit.
+//
+// Epipole density ρ ≥ 1 (1 = uniform): f(t) = t − b·t·(1 − t), t = k/(count − 1),
+// b = (ρ − 1)/(ρ + 1). f(0) = 0 and f(1) = 1 exactly; f'(t) = (1 − b) + 2b·t > 0, so it is
+// monotonic; the spacing grows linearly from the entry to the exit, the last spacing being
+// f'(1)/f'(0) = (1 + b)/(1 − b) = ρ times the first. Denser samples near the epipole follow the
+// inscattering, which varies fastest there (phase function peak, spot falloff, 1/d²). Values
+// below 1 are treated as 1 and values above TYN_EPIPOLAR_MAX_DENSITY as that.
+
+TYN_FUNC float tyn_epipole_density_bend(float epipole_density) {
+  float rho = clamp(epipole_density, 1.0f, TYN_EPIPOLAR_MAX_DENSITY);
+  return (rho - 1.0f) / (rho + 1.0f);
+}
+
+// Number of valid samples of a slice: 0 for a culled slice; max_samples (≥ 2) normally; with
+// improved placement (yusov2013), a short slice uses only as many samples as keep its largest
+// spacing at most one pixel, ceil(length·f'max) + 1, so that short slices (epipole near the
+// border) do not waste ray-marching samples on sub-pixel steps. Samples k ≥ count are invalid;
+// the last valid one lands exactly on the exit point.
+TYN_FUNC uint tyn_slice_sample_count(vec4 end_points, vec2 extent, uint max_samples,
+                                     float epipole_density, bool improved_placement) {
+  if (!tyn_slice_valid(end_points)) return 0u;
+  if (!improved_placement) return max_samples;
+  vec2 along = vec2(end_points.z - end_points.x, end_points.w - end_points.y);
+  float length_pixels = length(along * extent * 0.5f);
+  float steepest = 1.0f + tyn_epipole_density_bend(epipole_density);  // f'(1)
+  float needed = ceil(length_pixels * steepest) + 1.0f;
+  return uint(clamp(needed, 2.0f, float(max_samples)));
+}
+
+// f(k / (count − 1)) ∈ [0, 1]; the sample index k may be fractional.
+TYN_FUNC float tyn_sample_fraction(float sample_index, uint sample_count, float epipole_density) {
+  if (sample_count < 2u) return 0.0f;
+  float t = sample_index / float(sample_count - 1u);
+  float b = tyn_epipole_density_bend(epipole_density);
+  return t - b * t * (1.0f - t);
+}
+
+TYN_FUNC vec2 tyn_sample_position(vec4 end_points, float sample_index, uint sample_count,
+                                  float epipole_density) {
+  float f = tyn_sample_fraction(sample_index, sample_count, epipole_density);
+  return vec2(end_points.x, end_points.y) * (1.0f - f) + vec2(end_points.z, end_points.w) * f;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Inverse (unwarp): screen pixel → slice coordinates
+
+// Continuous slice coordinate c ∈ [0, N) of the epipolar line through p (NDC): the line from the
+// epipole through p is followed beyond p to the sample rectangle, and that border point is
+// inverted into a slice coordinate. p lies between slices tyn_slice_pair(c) with weight fract(c)
+// on the second (c ∈ [N − 1, N) blends slice N − 1 with slice 0: the seam needs no special case).
+// p is clamped to the rectangle first (pixel centres are in it anyway). At the epipole itself
+// every slice passes through p; the horizontal direction is then used, and p sits at the entry
+// of whichever slice that gives.
+TYN_FUNC float tyn_slice_coordinate(vec4 epipole, vec2 p, uint num_slices, vec2 extent) {
+  vec4 rect = tyn_epipolar_screen_rect(extent);
+  vec2 q = clamp(p, vec2(rect.x, rect.y), vec2(rect.z, rect.w));
+  vec2 d = tyn_epipolar_direction(epipole, q);
+  float scale = max(abs(d.x), abs(d.y));
+  d = scale > 1.0e-30f ? d / scale : vec2(1.0f, 0.0f);
+  float t_exit = tyn_line_rect_interval(q, d, rect).y;
+  vec2 border = clamp(q + d * max(t_exit, 0.0f), vec2(rect.x, rect.y), vec2(rect.z, rect.w));
+  return tyn_border_slice_coordinate(border, num_slices, extent);
+}
+
+// The two slices a continuous slice coordinate lies between.
+TYN_FUNC uvec2 tyn_slice_pair(float slice_coordinate, uint num_slices) {
+  uint first = min(uint(slice_coordinate), num_slices - 1u);
+  return uvec2(first, (first + 1u) % num_slices);
+}
+
+// Position of p along a slice, projected orthogonally: 0 at the entry, 1 at the exit
+// (unclamped). For a p on the slice's line this is the fraction f of tyn_sample_position.
+TYN_FUNC float tyn_slice_fraction(vec4 end_points, vec2 p) {
+  vec2 entry = vec2(end_points.x, end_points.y);
+  vec2 along = vec2(end_points.z, end_points.w) - entry;
+  return dot(p - entry, along) / max(dot(along, along), 1.0e-30f);
+}
+
+// Continuous sample index k ∈ [0, count − 1] of a fraction f (clamped to [0, 1]): inverse of
+// tyn_sample_fraction. Solves b·t² + (1 − b)·t − f = 0 with the root written as
+// 2f / ((1 − b) + sqrt((1 − b)² + 4b·f)), which has no cancellation as b → 0 (uniform).
+TYN_FUNC float tyn_sample_coordinate(float fraction, uint sample_count, float epipole_density) {
+  if (sample_count < 2u) return 0.0f;
+  float f = clamp(fraction, 0.0f, 1.0f);
+  float b = tyn_epipole_density_bend(epipole_density);
+  float t = 2.0f * f / ((1.0f - b) + sqrt((1.0f - b) * (1.0f - b) + 4.0f * b * f));
+  return t * float(sample_count - 1u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Slice in shadow-map UV (yusov2013 "Slice origin and direction")
+//
+// Every view ray of a slice lies in the slice's epipolar plane, which contains the camera C and
+// the light (its position, or its direction at infinity). Seen from the light, that plane is a
+// line ℓ of the shadow map, the same for every ray of the slice: that is what makes a 1D min/max
+// tree per slice possible. The construction below is Yusov's plane intersection done in the
+// shadow map's homogeneous 2D coordinates: ℓ is the line through the images of C and of the
+// exit ray's direction S1 (c = M·(C, 1), s = M·(S1, 0), in homogeneous UV), ℓ = c × s; the light
+// itself projects to (0, 0, 0) (or, for a directional light, its direction does), so any third
+// point of the plane lands on ℓ too. Along a ray C + t·v of the slice, v = a·S1 + b·(light
+// direction) with a ≥ 0, the image moves along ℓ by d/dt (uv) ∝ a·(s.xy·c.w − c.xy·s.w) = a·(ℓ.y,
+// −ℓ.x): one direction for every ray, whether the camera is in front of the light's plane
+// (c.w > 0), on it or behind it. That is the returned direction.
+// Origin, where marching starts for every ray of the slice:
+// - the camera's image when the camera is in front of the light (c.w > 0; always so for an
+//   orthographic directional shadow matrix) and inside the region;
+// - otherwise the first point of ℓ inside the region after the camera's image (c.w > 0), or,
+//   when the camera is on or behind the light's plane (c.w ≤ 0), the first point of ℓ inside the
+//   region, since those rays' images come in from infinity against the direction. This is the
+//   image of the cone side through which every ray of the slice enters (yusov2013).
+// The region is the shadow map [0, 1]² intersected with the spot cone's image, a circle (see
+// tyn_spot_cone_uv); pass a radius ≤ 0 for no cone (directional light, point-light faces).
+// Supported: directional lights with an orthographic shadow matrix whose projection direction is
+// the light direction; spot lights and point-light faces with a perspective shadow matrix whose
+// centre is the light position; camera inside, outside, or behind the cone, at any distance.
+// Not supported (returns false): the camera exactly at the light position, and a slice whose
+// exit ray points exactly at the light (its plane is undefined; such a slice has zero length on
+// screen). IMPORTANT: the circle is exact only for a shadow frustum symmetric about the spot axis
+// (as the host stub builds it); otherwise pass a circle that contains the cone's image.
+// UV: u = x_ndc·0.5 + 0.5, v = y_ndc·0.5 + 0.5 (v grows with the shadow map's rows).
+
+// The spot cone's image in shadow UV, (centre.xy, radius): the image of the axis and of one
+// generator, cos_outer = cos(outer half-angle) > 0.
+TYN_FUNC vec3 tyn_spot_cone_uv(mat4 world_to_shadow, vec3 position, vec3 axis, float cos_outer) {
+  vec3 a = normalize(axis);
+  vec3 side = normalize(abs(a.y) < 0.9f ? cross(a, vec3(0.0f, 1.0f, 0.0f))
+                                        : cross(a, vec3(1.0f, 0.0f, 0.0f)));
+  float tan_outer = sqrt(max(1.0f - cos_outer * cos_outer, 0.0f)) / cos_outer;
+  vec4 centre = world_to_shadow * vec4(position + a, 1.0f);
+  vec4 rim = world_to_shadow * vec4(position + a + side * tan_outer, 1.0f);
+  vec2 centre_uv = vec2(centre.x, centre.y) / centre.w * 0.5f + 0.5f;
+  vec2 rim_uv = vec2(rim.x, rim.y) / rim.w * 0.5f + 0.5f;
+  return vec3(centre_uv, length(rim_uv - centre_uv));
+}
+
+// Homogeneous UV (u·w, v·w, w) of a shadow clip position, scaled to unit length (the scale is
+// positive, so the sign of w, which tells in front of / behind the light, is kept).
+TYN_FUNC vec3 tyn_shadow_uv_homogeneous(vec4 clip) {
+  vec3 h = vec3(0.5f * (clip.x + clip.w), 0.5f * (clip.y + clip.w), clip.w);
+  float largest = max(max(abs(h.x), abs(h.y)), abs(h.z));
+  return largest > 0.0f ? normalize(h / largest) : vec3(0.0f);
+}
+
+// origin_direction = (origin.uv, unit direction.uv); uv_length = UV distance from the origin to
+// where ℓ leaves the region. exit_ray: world direction of the view ray through the slice's exit
+// point (any positive length). Returns false when no ray of the slice reaches the region or the
+// slice is degenerate (see above); origin_direction is then vec4(TYN_EPIPOLAR_INVALID_COORD).
+TYN_FUNC bool tyn_slice_shadow_uv(mat4 world_to_shadow, vec3 camera_pos, vec3 exit_ray,
+                                  vec3 cone_uv, TYN_INOUT(vec4) origin_direction,
+                                  TYN_INOUT(float) uv_length) {
+  origin_direction = vec4(TYN_EPIPOLAR_INVALID_COORD);
+  uv_length = 0.0f;
+  vec3 c = tyn_shadow_uv_homogeneous(world_to_shadow * vec4(camera_pos, 1.0f));
+  vec3 s = tyn_shadow_uv_homogeneous(world_to_shadow * vec4(exit_ray, 0.0f));
+  vec3 line = cross(c, s);  // line · (u, v, 1) = 0
+  vec2 dir = vec2(line.y, -line.x);
+  float dir_length = length(dir);
+  // |c| = |s| = 1, so dir_length is the sine of the angle between the two images: near zero the
+  // plane is undefined (camera at the light, or exit ray towards the light / along its direction).
+  if (!(dir_length > 1.0e-6f)) return false;
+  dir = dir / dir_length;
+  // A point of ℓ: the nearest to the map centre, so that the clip parameters stay small.
+  vec2 centre = vec2(0.5f);
+  vec2 normal = vec2(line.x, line.y) / dir_length;
+  vec2 p0 = centre - normal * ((dot(vec2(line.x, line.y), centre) + line.z) / dir_length);
+  vec2 range = tyn_line_rect_interval(p0, dir, vec4(0.0f, 0.0f, 1.0f, 1.0f));
+  if (cone_uv.z > 0.0f) {
+    vec2 to_p0 = p0 - vec2(cone_uv.x, cone_uv.y);
+    float half_b = dot(to_p0, dir);
+    float disc = half_b * half_b - (dot(to_p0, to_p0) - cone_uv.z * cone_uv.z);
+    if (disc < 0.0f) return false;
+    float root = sqrt(disc);
+    range = vec2(max(range.x, -half_b - root), min(range.y, -half_b + root));
+  }
+  if (c.z > 0.0f) range.x = max(range.x, dot(vec2(c.x, c.y) / c.z - p0, dir));
+  if (!(range.x <= range.y)) return false;
+  origin_direction = vec4(p0 + dir * range.x, dir);
+  uv_length = range.y - range.x;
+  return true;
+}
+
+TYN_END
+
+#endif

@@ -183,7 +183,7 @@ void drawSceneGeometry(VkCommandBuffer cmd, const SceneGeometry& geometry, VkFro
   }
 }
 
-bool GBufferPass::create(const vk::GpuContext& gpu, VkCompareOp depthCompare, std::string& error) {
+bool createMeshPipelineLayout(const vk::GpuContext& gpu, vk::UniquePipelineLayout& out, std::string& error) {
   VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(gpu::MeshPush)};
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layoutInfo.pushConstantRangeCount = 1;
@@ -193,7 +193,13 @@ bool GBufferPass::create(const vk::GpuContext& gpu, VkCompareOp depthCompare, st
                  "vkCreatePipelineLayout", error)) {
     return false;
   }
-  layout_ = vk::UniquePipelineLayout(gpu.device, layout);
+  out = vk::UniquePipelineLayout(gpu.device, layout);
+  return true;
+}
+
+bool GBufferPass::create(const vk::GpuContext& gpu, VkCompareOp depthCompare, std::string& error) {
+  if (!createMeshPipelineLayout(gpu, layout_, error)) return false;
+  const VkPipelineLayout layout = layout_.get();
 
   vk::GraphicsPipelineDesc desc;
   desc.layout = layout;

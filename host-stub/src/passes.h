@@ -76,6 +76,8 @@ bool buildSceneGeometry(const vk::GpuContext& gpu, VkCommandPool pool, const Sce
 /// the winding of front faces in the framebuffer: counter-clockwise for the y-flipped camera
 /// projection, clockwise for the shadow projections, which do not flip y.
 void drawSceneGeometry(VkCommandBuffer cmd, const SceneGeometry& geometry, VkFrontFace frontFace);
+/// The pipeline layout of the passes that draw the scene geometry: one MeshPush constant block.
+bool createMeshPipelineLayout(const vk::GpuContext& gpu, vk::UniquePipelineLayout& out, std::string& error);
 
 // ---------------------------------------------------------------------------------------------
 // Shadow frusta

@@ -180,16 +180,8 @@ ShadowViews fitShadowViews(const Scene& scene, const CameraSetup& camera, const 
 }
 
 bool ShadowPass::create(const vk::GpuContext& gpu, std::string& error) {
-  VkPushConstantRange push{VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof(gpu::MeshPush)};
-  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layoutInfo.pushConstantRangeCount = 1;
-  layoutInfo.pPushConstantRanges = &push;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  if (!vk::check(vkCreatePipelineLayout(gpu.device, &layoutInfo, nullptr, &layout),
-                 "vkCreatePipelineLayout", error)) {
-    return false;
-  }
-  layout_ = vk::UniquePipelineLayout(gpu.device, layout);
+  if (!createMeshPipelineLayout(gpu, layout_, error)) return false;
+  const VkPipelineLayout layout = layout_.get();
 
   vk::GraphicsPipelineDesc desc;
   desc.layout = layout;

@@ -101,6 +101,18 @@ std::vector<BadCase> badCases() {
       {"light-colour texture", Status::UnsupportedFeature, [](F& f, S&) { f.lightColor = f.color; }},
       {"AOV with zero extent", invalid, [](F& f, S&) { f.scatteringOutput.extent = {0, 0}; }},
       {"zero auto budget", invalid, [](F& f, S&) { f.autoBudgetMilliseconds = 0.0f; }},
+      {"unknown technique", invalid, [](F& f, S&) { f.technique = static_cast<Technique>(99); }},
+      {"epipolar slices out of range", invalid, [](F& f, S&) {
+         static EpipolarSettings settings;
+         settings.slices = 4;
+         f.technique = Technique::Epipolar;
+         f.epipolar = &settings;
+       }},
+      {"NaN epipolar bilateral threshold", invalid, [](F& f, S&) {
+         static EpipolarSettings settings;
+         settings.bilateralDepthThreshold = kNaN;
+         f.epipolar = &settings;
+       }},
   };
 }
 

@@ -4,11 +4,15 @@
 #include <new>
 
 #include "composite/composite_pass.h"
+#include "epipolar/epipolar_geometry.h"
+#include "epipolar/epipolar_technique.h"
 #include "frame_setup.h"
 #include "gpu.h"
 #include "profiles.h"
 #include "reference/reference_pass.h"
 #include "timing.h"
+
+#include <glm/gtc/type_ptr.hpp>
 
 namespace tyndall {
 
@@ -48,6 +52,23 @@ constexpr VkImageUsageFlags kTargetUsage =
 // compared against double-precision references.
 constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
+// Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
+// the shaders would run (shaders/epipolar/epipolar_geometry.h).
+gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarSettings& settings) {
+  const glm::mat4 viewProj = glm::make_mat4(frame.camera.projection.data()) * glm::make_mat4(frame.camera.view.data());
+  const LightDesc& light = frame.light;
+  const glm::vec4 lightClip =
+      light.type == LightType::Directional
+          ? gpu::tyn_epipole_clip_directional(viewProj, glm::normalize(glm::make_vec3(light.direction.data())))
+          : gpu::tyn_epipole_clip_local(viewProj, glm::make_vec3(light.position.data()));
+  gpu::EpipolarConstants k{};
+  k.epipole = gpu::tyn_epipole(lightClip);
+  k.counts = glm::uvec4(settings.slices, settings.samplesPerSlice, settings.improvedSamplePlacement ? 1u : 0u, 0u);
+  k.params = glm::vec4(settings.epipoleDensity, settings.bilateralDepthThreshold, settings.fixupWeightThreshold,
+                         settings.epipoleFixupRadius);
+  return k;
+}
+
 }  // namespace
 
 struct Context::Impl {
@@ -58,6 +79,7 @@ struct Context::Impl {
   std::vector<MappedBuffer> constants;  // one per frame slot
   GpuTimer timer;
   ReferencePass reference;
+  EpipolarTechnique epipolar;
   CompositePass composite;
   // Size-dependent.
   OwnedImage scattering;
@@ -77,7 +99,8 @@ struct Context::Impl {
   void destroySizeDependent();
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
-  void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame);
+  void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
+                        const EpipolarSettings& epipolarSettings);
   void recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets);
 };
 
@@ -101,6 +124,7 @@ Outcome Context::Impl::createSizeIndependent() {
   if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
   stats.timestampsSupported = timer.supported();
   if (Outcome o = reference.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
+  if (Outcome o = epipolar.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
   if (desc.backBufferFormat != VK_FORMAT_UNDEFINED) {
     if ((gpu.optimalFeatures(desc.backBufferFormat) & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) == 0) {
@@ -112,6 +136,7 @@ Outcome Context::Impl::createSizeIndependent() {
 }
 
 Outcome Context::Impl::createSizeDependent() {
+  if (Outcome o = epipolar.resize(gpu, extent); !o) return o;
   if (Outcome o = createImage(gpu, kTargetFormat, extent, kTargetUsage, scattering); !o) return o;
   return createImage(gpu, kTargetFormat, extent, kTargetUsage, transmittance);
 }
@@ -126,6 +151,7 @@ void Context::Impl::destroyAll() {
   if (gpu.device == VK_NULL_HANDLE) return;
   destroySizeDependent();
   composite.destroy(gpu);
+  epipolar.destroy(gpu);
   reference.destroy(gpu);
   timer.destroy(gpu);
   for (MappedBuffer& buffer : constants) destroyBuffer(gpu, buffer);
@@ -243,9 +269,29 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 
   const std::uint32_t slot = static_cast<std::uint32_t>(stats.frameIndex % desc.maxFramesInFlight);
   const ProfileChoice& choice = profileChoice(frame.profile);
+  Technique technique = frame.technique != Technique::None ? frame.technique : choice.technique;
+  std::string note = frame.technique != Technique::None ? std::string("technique set by the frame: ") +
+                                                              to_string(frame.technique)
+                                                        : std::string(choice.note);
+  const EpipolarSettings& epipolarSettings = frame.epipolar != nullptr ? *frame.epipolar : choice.epipolar;
+  if (technique == Technique::Epipolar && (extent.width < 2 || extent.height < 2)) {
+    // Epipolar lines need a screen at least two pixels wide and high (a design fallback).
+    technique = Technique::Reference;
+    note += "; output smaller than 2x2: Reference instead of epipolar";
+  }
+  if (technique == Technique::Epipolar) {
+    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, stats.frameIndex, desc.maxFramesInFlight); !o) {
+      return fail(o);
+    }
+  }
+
   stats.requestedProfile = frame.profile;
   stats.passesRecorded.clear();
+  stats.marchedSamples = 0;
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
+  if (const std::int64_t fixedUp = epipolar.takeFixupCount(slot); fixedUp >= 0) {
+    stats.fixedUpPixelFraction = static_cast<double>(fixedUp) / (double(extent.width) * extent.height);
+  }
 
   if (!setup.attenuates) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
@@ -253,10 +299,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.techniqueNote = "medium has no extinction: the back buffer is left as it is";
     recordAovs(cmd, frame, false);
   } else {
-    stats.technique = choice.technique;
-    stats.techniqueNote = choice.note;
+    stats.technique = technique;
+    stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
-    recordScattering(cmd, slot, frame);
+    recordScattering(cmd, slot, frame, technique, epipolarSettings);
     recordAovs(cmd, frame, true);
   }
 
@@ -268,13 +314,15 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   return {};
 }
 
-void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame) {
+void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
+                                     Technique technique, const EpipolarSettings& epipolarSettings) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
 
   // Each pass's timestamps are written before its barriers: a CPU driver (lavapipe) takes a
   // timestamp when it next flushes, and a barrier flushes, so the stamps then bracket the work.
-  timer.beginPass(gpu, cmd, "reference_scattering");
+  const bool bruteForce = technique == Technique::Reference;
+  if (bruteForce) timer.beginPass(gpu, cmd, "reference_scattering");
   // Tyndall's targets: the previous frame's reads must finish before they are overwritten;
   // the old contents are discarded.
   for (const OwnedImage* target : {&scattering, &transmittance}) {
@@ -306,9 +354,24 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     acquireDepth(map, bindings.shadowLayouts[i]);
   }
 
-  reference.record(gpu, cmd, slot, bindings, extent);
-  timer.endPass(gpu, cmd);
-  stats.passesRecorded.emplace_back("reference_scattering");
+  if (bruteForce) {
+    // ReferencePass::Bindings and EpipolarTechnique::Bindings carry the same fields.
+    reference.record(gpu, cmd, slot, bindings, extent);
+    timer.endPass(gpu, cmd);
+    stats.passesRecorded.emplace_back("reference_scattering");
+  } else {
+    EpipolarTechnique::Bindings epipolarBindings;
+    epipolarBindings.constants = bindings.constants;
+    epipolarBindings.depth = bindings.depth;
+    epipolarBindings.depthLayout = bindings.depthLayout;
+    epipolarBindings.shadowMaps = bindings.shadowMaps;
+    epipolarBindings.shadowLayouts = bindings.shadowLayouts;
+    epipolarBindings.scattering = bindings.scattering;
+    epipolarBindings.transmittance = bindings.transmittance;
+    epipolar.record(gpu, cmd, slot, epipolarBindings, epipolarConstants(frame, epipolarSettings), extent, timer,
+                    stats.passesRecorded);
+    stats.marchedSamples = std::uint64_t(epipolarSettings.slices) * epipolarSettings.samplesPerSlice;
+  }
   releaseDepth(frame.depth, bindings.depthLayout);
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
     releaseDepth(frame.shadowMaps[i].depth, bindings.shadowLayouts[i]);

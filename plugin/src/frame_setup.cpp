@@ -5,6 +5,8 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "epipolar/epipolar_technique.h"
+
 namespace tyndall {
 
 static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 16 + 4 * 16 + 3 * 16,
@@ -143,6 +145,12 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   }
   if (!std::isfinite(frame.autoBudgetMilliseconds) || frame.autoBudgetMilliseconds <= 0.0f) {
     return invalid("autoBudgetMilliseconds must be finite and > 0");
+  }
+  if (static_cast<std::uint32_t>(frame.technique) > static_cast<std::uint32_t>(Technique::Epipolar)) {
+    return invalid("technique is not a Technique");
+  }
+  if (frame.epipolar != nullptr) {
+    if (Outcome o = validateEpipolarSettings(*frame.epipolar); !o) return o;
   }
 
   // Camera.

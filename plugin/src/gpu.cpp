@@ -94,8 +94,10 @@ void destroyImage(const Gpu& gpu, OwnedImage& image) {
   image = OwnedImage{};
 }
 
-Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage,
-                           MappedBuffer& out) {
+namespace {
+
+Outcome createBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory,
+                     MappedBuffer& out) {
   out.size = size;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
@@ -105,20 +107,39 @@ Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags
   if (result != VK_SUCCESS) return vkFailed("vkCreateBuffer", result);
   VkMemoryRequirements requirements{};
   gpu.vk.vkGetBufferMemoryRequirements(gpu.device, out.buffer, &requirements);
-  Outcome outcome = allocate(gpu, requirements,
-                             VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-                             out.memory);
+  Outcome outcome = allocate(gpu, requirements, memory, out.memory);
   if (!outcome) return outcome;
   result = gpu.vk.vkBindBufferMemory(gpu.device, out.buffer, out.memory, 0);
-  if (result != VK_SUCCESS) return vkFailed("vkBindBufferMemory", result);
-  result = gpu.vk.vkMapMemory(gpu.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkBindBufferMemory", result);
+}
+
+}  // namespace
+
+Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage,
+                           MappedBuffer& out) {
+  Outcome outcome = createBuffer(gpu, size, usage,
+                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, out);
+  if (!outcome) return outcome;
+  VkResult result = gpu.vk.vkMapMemory(gpu.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped);
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkMapMemory", result);
+}
+
+Outcome createDeviceBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage, MappedBuffer& out) {
+  return createBuffer(gpu, size, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, out);
 }
 
 void destroyBuffer(const Gpu& gpu, MappedBuffer& buffer) {
   if (buffer.buffer != VK_NULL_HANDLE) gpu.vk.vkDestroyBuffer(gpu.device, buffer.buffer, gpu.allocator);
   if (buffer.memory != VK_NULL_HANDLE) gpu.vk.vkFreeMemory(gpu.device, buffer.memory, gpu.allocator);
   buffer = MappedBuffer{};
+}
+
+void memoryBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = srcAccess;
+  barrier.dstAccessMask = dstAccess;
+  gpu.vk.vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
 void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,

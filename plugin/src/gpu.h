@@ -50,6 +50,8 @@ struct MappedBuffer {
 };
 Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage,
                            MappedBuffer& out);
+/// A device-local buffer (`mapped` stays null).
+Outcome createDeviceBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage, MappedBuffer& out);
 void destroyBuffer(const Gpu& gpu, MappedBuffer& buffer);
 
 /// How an image is used at one point of the command stream.
@@ -58,6 +60,10 @@ struct ImageUse {
   VkPipelineStageFlags stage;
   VkAccessFlags access;
 };
+
+/// Global memory barrier: `srcAccess` writes in `srcStage` made visible to `dstAccess` in `dstStage`.
+void memoryBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                   VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);
 
 /// Whole-image barrier (mip 0, one layer) from one use to the next.
 void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,

@@ -12,6 +12,8 @@ struct ProfileChoice {
   Technique technique;
   /// Why, in one line, for the stats.
   const char* note;
+  /// Parameters when the technique is Epipolar.
+  EpipolarSettings epipolar;
 };
 
 /// The row for a profile (Auto resolves like the others until it has measurements to use).

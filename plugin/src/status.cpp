@@ -28,6 +28,7 @@ const char* to_string(Technique technique) noexcept {
   switch (technique) {
     case Technique::None: return "none";
     case Technique::Reference: return "reference";
+    case Technique::Epipolar: return "epipolar";
   }
   return "unknown";
 }

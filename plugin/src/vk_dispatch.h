@@ -52,6 +52,9 @@ namespace tyndall {
   X(vkCmdBindDescriptorSets)        \
   X(vkCmdPushConstants)             \
   X(vkCmdDispatch)                  \
+  X(vkCmdDispatchIndirect)          \
+  X(vkCmdFillBuffer)                \
+  X(vkCmdCopyBuffer)                \
   X(vkCmdDraw)                      \
   X(vkCmdSetViewport)               \
   X(vkCmdSetScissor)                \

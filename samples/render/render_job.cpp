@@ -46,7 +46,7 @@ double median(std::vector<double> values) {
 
 std::string usage() {
   return "usage: tyndall-render SCENE.json [--profile reference|high|balanced|performance|auto]\n"
-         "         [--technique reference] [--width W] [--height H] [--shadow-map-size N]\n"
+         "         [--technique reference|epipolar] [--width W] [--height H] [--shadow-map-size N]\n"
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n";
@@ -77,12 +77,14 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       }
     } else if (arg == "--technique") {
       if (!value(v)) return false;
-      // Only the brute-force technique exists so far; it is what the Reference profile runs.
-      if (v != "reference") {
-        error = "--technique must be one of: reference (got '" + v + "')";
+      if (v == "reference") {
+        options.technique = Technique::Reference;
+      } else if (v == "epipolar") {
+        options.technique = Technique::Epipolar;
+      } else {
+        error = "--technique must be one of: reference, epipolar (got '" + v + "')";
         return false;
       }
-      options.profile = Profile::Reference;
     } else if (arg == "--width" || arg == "--height") {
       if (!value(v)) return false;
       std::uint32_t& target = arg == "--width" ? options.width : options.height;
@@ -156,6 +158,8 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
   if (!options.noEffect) {
     effect = TyndallEffect::create(device, settings, options.profile, error);
     if (!effect) return false;
+    effect->setTechnique(options.technique);
+    effect->setEpipolarSettings(options.epipolar);
     renderer->addPostProcess(effect.get());
   }
 

@@ -131,7 +131,9 @@ FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, 
 
 bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) {
   FrameStorage storage;
-  const FrameDesc frame = makeFrameDesc(inputs, profile_, storage);
+  FrameDesc frame = makeFrameDesc(inputs, profile_, storage);
+  frame.technique = technique_;
+  if (epipolar_) frame.epipolar = &*epipolar_;
   if (Outcome outcome = context_->record(cmd, frame); !outcome) {
     error = std::string("tyndall: ") + to_string(outcome.status) + ": " + outcome.message;
     return false;

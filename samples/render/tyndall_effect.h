@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,10 @@ class TyndallEffect final : public host::PostProcessEffect {
   bool resize(VkExtent2D extent, std::string& error) override;
 
   void setProfile(Profile profile) { profile_ = profile; }
+  /// Technique::None lets the profile decide.
+  void setTechnique(Technique technique) { technique_ = technique; }
+  /// Parameters of the epipolar technique instead of the profile's (empty: the profile's).
+  void setEpipolarSettings(const std::optional<EpipolarSettings>& settings) { epipolar_ = settings; }
   Context& context() { return *context_; }
   /// Messages the context reported through its callback.
   const std::vector<std::string>& messages() const { return messages_; }
@@ -30,6 +35,8 @@ class TyndallEffect final : public host::PostProcessEffect {
 
   std::unique_ptr<Context> context_;
   Profile profile_ = Profile::Balanced;
+  Technique technique_ = Technique::None;
+  std::optional<EpipolarSettings> epipolar_;
   std::vector<std::string> messages_;
 };
 

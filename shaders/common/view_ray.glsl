@@ -10,27 +10,33 @@ struct TynViewRay {
   float surface_distance;  // to the first surface (or the far plane / sky distance)
 };
 
-// pixel: integer pixel coordinates; depth: the host's depth-buffer value there.
-TynViewRay tyn_view_ray(uvec2 pixel, float depth) {
-  vec2 ndc = (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0;
-  // The direction comes from the near-plane point, which exists for every projection convention.
+// Unit world-space direction of the view ray through a screen point (NDC). It comes from the
+// near-plane point, which exists for every projection convention.
+vec3 tyn_view_direction(vec2 ndc) {
   vec4 near_point = frame.clip_to_view * vec4(ndc, frame.depth_params.x, 1.0);
   vec3 view_dir = normalize(near_point.xyz / near_point.w);
+  return normalize(mat3(frame.view_to_world) * view_dir);
+}
 
-  float ray_length;
+// Length of the view ray through `ndc` to the surface at `depth` (a depth-buffer value).
+float tyn_view_distance(vec2 ndc, float depth) {
   bool sky = depth == frame.depth_params.y;
-  if (sky && frame.depth_params.z > 0.5) {
-    ray_length = frame.depth_params.w;
-  } else {
-    vec4 surface = frame.clip_to_view * vec4(ndc, depth, 1.0);
-    ray_length = length(surface.xyz / surface.w);
-  }
+  if (sky && frame.depth_params.z > 0.5) return frame.depth_params.w;
+  vec4 surface = frame.clip_to_view * vec4(ndc, depth, 1.0);
+  return length(surface.xyz / surface.w);
+}
 
+TynViewRay tyn_view_ray_ndc(vec2 ndc, float depth) {
   TynViewRay ray;
   ray.origin = frame.view_to_world[3].xyz;
-  ray.direction = normalize(mat3(frame.view_to_world) * view_dir);
-  ray.surface_distance = ray_length;
+  ray.direction = tyn_view_direction(ndc);
+  ray.surface_distance = tyn_view_distance(ndc, depth);
   return ray;
+}
+
+// pixel: integer pixel coordinates; depth: the host's depth-buffer value there.
+TynViewRay tyn_view_ray(uvec2 pixel, float depth) {
+  return tyn_view_ray_ndc((vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0, depth);
 }
 
 #endif

@@ -64,8 +64,29 @@ enum class Profile : std::uint32_t {
   Auto,         ///< best quality that fits `FrameDesc::autoBudgetMilliseconds`
 };
 
-/// The technique that actually ran for a frame.
-enum class Technique : std::uint32_t { None, Reference };
+/// A technique: what a profile maps to, and what ran for a frame.
+enum class Technique : std::uint32_t {
+  None,       ///< nothing recorded (nothing to compute), or: no override
+  Reference,  ///< brute force per pixel
+  Epipolar,   ///< epipolar sampling (engelhardt2010, yusov2013): samples along epipolar lines, unwarped
+};
+
+/// Parameters of the epipolar technique. Every field is validated per frame.
+struct EpipolarSettings {
+  std::uint32_t slices = 512;            ///< epipolar slices (lines from the epipole to the border), 8..4096
+  std::uint32_t samplesPerSlice = 256;   ///< samples along each slice, 2..4096
+  bool improvedSamplePlacement = true;   ///< a short slice uses only ≈ one sample per pixel (yusov2013)
+  float epipoleDensity = 1.0f;           ///< last / first sample spacing along a slice, [1, 1000]; 1 = uniform
+  /// Relative difference of view-ray length up to which an epipolar sample is interpolated into
+  /// a pixel (the bilateral filter of the unwarp), (0, 1], default 0.05.
+  float bilateralDepthThreshold = 0.05f;
+  /// A pixel whose bilateral weights sum to less than this is ray-marched by the fix-up pass,
+  /// (0, 1], default 0.05.
+  float fixupWeightThreshold = 0.05f;
+  /// Pixels within this many pixels of an on-screen projected light are ray-marched by the
+  /// fix-up pass (klehm2014's epipole block), [0, 256], default 8.
+  float epipoleFixupRadius = 8.0f;
+};
 
 const char* to_string(Profile profile) noexcept;
 const char* to_string(Technique technique) noexcept;
@@ -200,6 +221,12 @@ struct FrameDesc {
   Profile profile = Profile::Balanced;
   /// GPU-time budget for Profile::Auto in milliseconds, > 0, default 4.
   float autoBudgetMilliseconds = 4.0f;
+  /// Optional: runs this technique instead of the profile's (validation, benchmarks). None: the
+  /// profile decides.
+  Technique technique = Technique::None;
+  /// Optional: parameters of the epipolar technique instead of the profile's. Read during
+  /// `record` only.
+  const EpipolarSettings* epipolar = nullptr;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -231,6 +258,11 @@ struct Stats {
   FrameTimings lastTimings;
   bool timingsValid = false;
   bool timestampsSupported = false;
+  /// Epipolar technique: samples ray-marched in the last frame (slices × samples per slice).
+  std::uint64_t marchedSamples = 0;
+  /// Epipolar technique: fraction of the pixels the fix-up pass ray-marched, from the same
+  /// earlier frame as `lastTimings`; negative until one is known.
+  double fixedUpPixelFraction = -1.0;
 };
 
 // ---------------------------------------------------------------------------------------------

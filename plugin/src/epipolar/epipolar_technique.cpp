@@ -1,0 +1,310 @@
+#include "epipolar/epipolar_technique.h"
+
+#include <cmath>
+
+#include "tyndall_shaders.h"
+
+namespace tyndall {
+
+namespace {
+
+constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
+constexpr std::uint32_t kBindings = 10;
+constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+
+Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                              VkPipeline& out) {
+  VkShaderModule module = VK_NULL_HANDLE;
+  if (Outcome o = createShaderModule(gpu, spirv, module); !o) return o;
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.layout = layout;
+  VkResult result = gpu.vk.vkCreateComputePipelines(gpu.device, gpu.pipelineCache, 1, &info, gpu.allocator, &out);
+  gpu.vk.vkDestroyShaderModule(gpu.device, module, gpu.allocator);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateComputePipelines", result);
+}
+
+std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
+
+}  // namespace
+
+Outcome validateEpipolarSettings(const EpipolarSettings& s) {
+  auto invalid = [](const char* message) { return failure(Status::InvalidArgument, message); };
+  if (s.slices < 8 || s.slices > 4096) return invalid("epipolar.slices must be in 8..4096");
+  if (s.samplesPerSlice < 2 || s.samplesPerSlice > 4096) return invalid("epipolar.samplesPerSlice must be in 2..4096");
+  if (!(s.epipoleDensity >= 1.0f && s.epipoleDensity <= 1000.0f)) {
+    return invalid("epipolar.epipoleDensity must be in [1, 1000]");
+  }
+  if (!(s.bilateralDepthThreshold > 0.0f && s.bilateralDepthThreshold <= 1.0f)) {
+    return invalid("epipolar.bilateralDepthThreshold must be in (0, 1]");
+  }
+  if (!(s.fixupWeightThreshold > 0.0f && s.fixupWeightThreshold <= 1.0f)) {
+    return invalid("epipolar.fixupWeightThreshold must be in (0, 1]");
+  }
+  if (!(s.epipoleFixupRadius >= 0.0f && s.epipoleFixupRadius <= 256.0f)) {
+    return invalid("epipolar.epipoleFixupRadius must be in [0, 256]");
+  }
+  return {};
+}
+
+Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
+  const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
+  const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  const std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{{
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, samplers.data()},
+      {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, stage, samplers.data()},
+      {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+  }};
+  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layoutInfo.bindingCount = kBindings;
+  layoutInfo.pBindings = bindings.data();
+  VkResult result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
+
+  const VkPushConstantRange push{stage, 0, sizeof(gpu::EpipolarConstants)};
+  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout_;
+  pipelineLayoutInfo.pushConstantRangeCount = 1;
+  pipelineLayoutInfo.pPushConstantRanges = &push;
+  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 6> pipelines{{
+      {&slicePipeline_, shaders::slice_end_points_comp()},
+      {&coordinatesPipeline_, shaders::coordinates_comp()},
+      {&marchPipeline_, shaders::march_comp()},
+      {&unwarpPipeline_, shaders::unwarp_comp()},
+      {&fixupArgsPipeline_, shaders::fixup_args_comp()},
+      {&fixupPipeline_, shaders::fixup_comp()},
+  }};
+  for (const auto& [pipeline, spirv] : pipelines) {
+    if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
+  }
+
+  const std::array<VkDescriptorPoolSize, 4> sizes{{
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slots},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slots * (1 + kMaxShadowMaps)},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, slots * 5},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slots * 2},
+  }};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = slots;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  poolInfo.pPoolSizes = sizes.data();
+  result = gpu.vk.vkCreateDescriptorPool(gpu.device, &poolInfo, gpu.allocator, &pool_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorPool", result);
+  std::vector<VkDescriptorSetLayout> layouts(slots, setLayout_);
+  sets_.resize(slots);
+  VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  allocInfo.descriptorPool = pool_;
+  allocInfo.descriptorSetCount = slots;
+  allocInfo.pSetLayouts = layouts.data();
+  result = gpu.vk.vkAllocateDescriptorSets(gpu.device, &allocInfo, sets_.data());
+  if (result != VK_SUCCESS) return vkFailed("vkAllocateDescriptorSets", result);
+
+  fixupReadback_.resize(slots);
+  fixupPending_.assign(slots, false);
+  for (MappedBuffer& buffer : fixupReadback_) {
+    if (Outcome o = createMappedBuffer(gpu, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
+      return o;
+    }
+  }
+  return createDeviceBuffer(gpu, 3 * sizeof(std::uint32_t),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, fixupArgs_);
+}
+
+void EpipolarTechnique::destroyTextures(const Gpu& gpu, SampleTextures& textures) {
+  destroyImage(gpu, textures.scattering);
+  destroyImage(gpu, textures.coordinates);
+  destroyImage(gpu, textures.endPoints);
+  textures = SampleTextures{};
+}
+
+void EpipolarTechnique::destroySizeDependent(const Gpu& gpu) { destroyBuffer(gpu, fixupList_); }
+
+void EpipolarTechnique::destroy(const Gpu& gpu) {
+  for (Retired& retired : retired_) destroyTextures(gpu, retired.textures);
+  retired_.clear();
+  destroyTextures(gpu, textures_);
+  destroySizeDependent(gpu);
+  destroyBuffer(gpu, fixupArgs_);
+  for (MappedBuffer& buffer : fixupReadback_) destroyBuffer(gpu, buffer);
+  fixupReadback_.clear();
+  if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
+  for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, marchPipeline_, unwarpPipeline_,
+                              fixupArgsPipeline_, fixupPipeline_}) {
+    if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
+  }
+  if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
+  if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
+  *this = EpipolarTechnique{};
+}
+
+Outcome EpipolarTechnique::resize(const Gpu& gpu, VkExtent2D extent) {
+  destroySizeDependent(gpu);
+  const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height;
+  return createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                            fixupList_);
+}
+
+Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint64_t frameIndex,
+                                   std::uint32_t framesInFlight) {
+  frameIndex_ = frameIndex;
+  // Frame f has completed once frame f + framesInFlight is being recorded.
+  std::erase_if(retired_, [&](Retired& retired) {
+    if (retired.lastFrame + framesInFlight > frameIndex) return false;
+    destroyTextures(gpu, retired.textures);
+    return true;
+  });
+  if (textures_.slices == settings.slices && textures_.samples == settings.samplesPerSlice) return {};
+  if (textures_.slices != 0) {
+    retired_.push_back({frameIndex == 0 ? 0 : frameIndex - 1, textures_});
+    textures_ = SampleTextures{};
+  }
+  SampleTextures fresh;
+  fresh.slices = settings.slices;
+  fresh.samples = settings.samplesPerSlice;
+  Outcome outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.endPoints);
+  if (outcome) {
+    outcome = createImage(gpu, kSampleFormat, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
+                          fresh.coordinates);
+  }
+  if (outcome) {
+    outcome = createImage(gpu, kSampleFormat, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
+                          fresh.scattering);
+  }
+  if (!outcome) {
+    destroyTextures(gpu, fresh);
+    return outcome;
+  }
+  textures_ = fresh;
+  return {};
+}
+
+std::int64_t EpipolarTechnique::takeFixupCount(std::uint32_t slot) {
+  if (slot >= fixupPending_.size() || !fixupPending_[slot]) return -1;
+  fixupPending_[slot] = false;
+  return *static_cast<const std::uint32_t*>(fixupReadback_[slot].mapped);
+}
+
+void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& b) {
+  const VkDescriptorSet set = sets_[slot];
+  const VkDescriptorBufferInfo constants{b.constants, 0, VK_WHOLE_SIZE};
+  const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
+  std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow{};
+  for (std::uint32_t i = 0; i < kMaxShadowMaps; ++i) {
+    // Unused array elements repeat map 0: every element must be valid without partiallyBound.
+    const bool used = b.shadowMaps[i] != VK_NULL_HANDLE;
+    shadow[i] = {VK_NULL_HANDLE, used ? b.shadowMaps[i] : b.shadowMaps[0],
+                 used ? b.shadowLayouts[i] : b.shadowLayouts[0]};
+  }
+  const std::array<VkDescriptorImageInfo, 5> storage{{
+      {VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL},
+      {VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL},
+      {VK_NULL_HANDLE, textures_.scattering.view, VK_IMAGE_LAYOUT_GENERAL},
+      {VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL},
+      {VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL},
+  }};
+  const VkDescriptorBufferInfo list{fixupList_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo args{fixupArgs_.buffer, 0, VK_WHOLE_SIZE};
+
+  std::array<VkWriteDescriptorSet, 5 + 5> writes{};
+  auto write = [&](std::size_t i, std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
+    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[i].dstSet = set;
+    writes[i].dstBinding = binding;
+    writes[i].descriptorCount = count;
+    writes[i].descriptorType = type;
+    return writes[i];
+  };
+  write(0, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &constants;
+  write(1, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1).pImageInfo = &depth;
+  write(2, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps).pImageInfo = shadow.data();
+  for (std::uint32_t i = 0; i < storage.size(); ++i) {
+    write(3 + i, 3 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &storage[i];
+  }
+  write(8, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &list;
+  write(9, 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
+                               const gpu::EpipolarConstants& constants, VkExtent2D extent, GpuTimer& timer,
+                               std::vector<std::string>& passes) {
+  writeDescriptors(gpu, slot, bindings);
+  const VkDescriptorSet set = sets_[slot];
+  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
+  gpu.vk.vkCmdPushConstants(cmd, pipelineLayout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(constants), &constants);
+  const std::uint32_t slices = textures_.slices;
+  const std::uint32_t samples = textures_.samples;
+  const VkAccessFlags readWrite = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+
+  // Each pass's timestamps come before the barrier that starts it (see Context::recordScattering).
+  auto pass = [&](const char* name, VkPipeline pipeline, auto&& dispatch) {
+    timer.beginPass(gpu, cmd, name);
+    memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, kCompute, readWrite);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    dispatch();
+    timer.endPass(gpu, cmd);
+    passes.emplace_back(name);
+  };
+
+  // The sample textures are rewritten every frame: earlier contents (and reads) are discarded.
+  for (const OwnedImage* image : {&textures_.endPoints, &textures_.coordinates, &textures_.scattering}) {
+    imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
+                 {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
+  }
+  // The fix-up count starts at zero; the previous frame's indirect read must be done first.
+  memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+  gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
+
+  pass("epipolar_slice_end_points", slicePipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+  pass("epipolar_coordinates", coordinatesPipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+  pass("epipolar_march", marchPipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+  pass("epipolar_unwarp", unwarpPipeline_, [&] {
+    gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
+                         groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
+  });
+  pass("epipolar_fixup_args", fixupArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+
+  // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
+  timer.beginPass(gpu, cmd, "epipolar_fixup");
+  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipeline_);
+  gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
+  timer.endPass(gpu, cmd);
+  passes.emplace_back("epipolar_fixup");
+
+  // The count goes to the slot's readback buffer, read when the slot comes round again.
+  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_ACCESS_TRANSFER_READ_BIT);
+  const VkBufferCopy copy{0, 0, sizeof(std::uint32_t)};
+  gpu.vk.vkCmdCopyBuffer(cmd, fixupList_.buffer, fixupReadback_[slot].buffer, 1, &copy);
+  memoryBarrier(gpu, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                VK_ACCESS_HOST_READ_BIT);
+  fixupPending_[slot] = true;
+  // Later passes (composite, AOV copies) read the targets after a barrier of the caller's.
+  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute, VK_ACCESS_SHADER_READ_BIT);
+}
+
+}  // namespace tyndall

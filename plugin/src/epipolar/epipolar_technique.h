@@ -1,0 +1,92 @@
+// The epipolar technique (engelhardt2010, yusov2013): in-scattering is ray-marched only at
+// samples along epipolar lines (slices from the projected light to the screen border), then
+// interpolated back to every pixel with a bilateral filter on depth; pixels no sample
+// represents are ray-marched individually by the fix-up pass (indirect dispatch, so nothing
+// runs when nothing is flagged). Shaders: shaders/epipolar/.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/shared_constants.h"
+#include "epipolar/epipolar_constants.h"
+#include "gpu.h"
+#include "timing.h"
+
+namespace tyndall {
+
+/// Checks an EpipolarSettings' every field; the message names the field.
+Outcome validateEpipolarSettings(const EpipolarSettings& settings);
+
+class EpipolarTechnique {
+ public:
+  /// Per-frame bindings of host and Tyndall images (as the Reference pass takes them).
+  struct Bindings {
+    VkBuffer constants = VK_NULL_HANDLE;
+    VkImageView depth = VK_NULL_HANDLE;
+    VkImageLayout depthLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    std::array<VkImageView, kMaxShadowMaps> shadowMaps{};
+    std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
+    VkImageView scattering = VK_NULL_HANDLE;     ///< L_in target, storage, GENERAL
+    VkImageView transmittance = VK_NULL_HANDLE;  ///< T target, storage, GENERAL
+  };
+
+  Outcome create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots);
+  void destroy(const Gpu& gpu);
+  /// The fix-up list holds every pixel: rebuilt with the output extent.
+  Outcome resize(const Gpu& gpu, VkExtent2D extent);
+
+  /// Makes the sample textures match `settings`. Textures of other sizes are kept until no frame
+  /// in flight can use them (frames in flight need no stall when the parameters change).
+  Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint64_t frameIndex,
+                  std::uint32_t framesInFlight);
+
+  /// Records every pass; each is timed and appended to `passes`. The host inputs must already
+  /// be readable by compute shaders and the targets writable (GENERAL).
+  void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
+              const gpu::EpipolarConstants& constants, VkExtent2D extent, GpuTimer& timer,
+              std::vector<std::string>& passes);
+
+  /// Pixels the fix-up pass handled in the slot's previous frame (it has completed when the slot
+  /// comes round again), or -1 when unknown.
+  std::int64_t takeFixupCount(std::uint32_t slot);
+
+ private:
+  struct SampleTextures {
+    OwnedImage endPoints;    // slices × 1
+    OwnedImage coordinates;  // samples × slices
+    OwnedImage scattering;   // samples × slices
+    std::uint32_t slices = 0;
+    std::uint32_t samples = 0;
+  };
+  struct Retired {
+    std::uint64_t lastFrame = 0;
+    SampleTextures textures;
+  };
+  void destroyTextures(const Gpu& gpu, SampleTextures& textures);
+  void destroySizeDependent(const Gpu& gpu);
+  void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
+
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  VkPipeline slicePipeline_ = VK_NULL_HANDLE;
+  VkPipeline coordinatesPipeline_ = VK_NULL_HANDLE;
+  VkPipeline marchPipeline_ = VK_NULL_HANDLE;
+  VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
+  VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
+  VkPipeline fixupPipeline_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> sets_;
+  std::vector<MappedBuffer> fixupReadback_;  // per slot: the fix-up count, read a lap later
+  std::vector<bool> fixupPending_;
+  MappedBuffer fixupArgs_;                   // VkDispatchIndirectCommand
+  // Size-dependent.
+  MappedBuffer fixupList_;                   // count, then one packed pixel per entry
+  SampleTextures textures_;
+  std::vector<Retired> retired_;
+  std::uint64_t frameIndex_ = 0;
+};
+
+}  // namespace tyndall

@@ -1,0 +1,26 @@
+#version 460
+// Coordinate texture (yusov2013): the screen position of every epipolar sample and the length
+// of its view ray, read from the host's depth buffer at the pixel the sample falls in.
+#extension GL_GOOGLE_include_directive : require
+#include "epipolar/epipolar_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main() {
+  uvec2 id = gl_GlobalInvocationID.xy;  // x: sample, y: slice
+  if (id.x >= epipolar.counts.y || id.y >= epipolar.counts.x) return;
+  vec2 extent = tyn_output_extent();
+  vec4 end_points = imageLoad(slice_end_points, ivec2(id.y, 0));
+  uint count = tyn_slice_sample_count(end_points, extent, epipolar.counts.y, epipolar.params.x,
+                                      epipolar.counts.z != 0u);
+  if (id.x >= count) {
+    imageStore(epipolar_coordinates, ivec2(id), vec4(0.0));
+    return;
+  }
+  vec2 ndc = tyn_sample_position(end_points, float(id.x), count, epipolar.params.x);
+  // Samples lie on the hull of the pixel centres: the pixel containing one is always on screen.
+  uvec2 pixel = uvec2(clamp(floor(tyn_pixel_from_ndc(ndc, extent)), vec2(0.0), extent - 1.0));
+  float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
+  TynViewRay ray = tyn_view_ray_ndc(ndc, depth);
+  imageStore(epipolar_coordinates, ivec2(id), vec4(ndc, ray.surface_distance, 1.0));
+}

@@ -1,0 +1,35 @@
+// Declarations every epipolar pass shares: one descriptor set layout and the push constants.
+#ifndef TYNDALL_EPIPOLAR_COMMON_GLSL
+#define TYNDALL_EPIPOLAR_COMMON_GLSL
+
+
+#include "common/shared_constants.h"
+#include "epipolar/epipolar_constants.h"
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; };
+layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
+layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
+// (entry.xy, exit.xy) per slice, NDC; TYN_EPIPOLAR_INVALID_COORD for a culled slice.
+layout(set = 0, binding = 3, rgba32f) uniform image2D slice_end_points;
+// Per (sample, slice): NDC xy, view-ray length to the surface, 1 when the sample is valid.
+layout(set = 0, binding = 4, rgba32f) uniform image2D epipolar_coordinates;
+// Per (sample, slice): L_in of the ray-marched sample.
+layout(set = 0, binding = 5, rgba32f) uniform image2D epipolar_scattering;
+layout(set = 0, binding = 6, rgba32f) uniform image2D out_scattering;
+layout(set = 0, binding = 7, rgba32f) uniform image2D out_transmittance;
+// Pixels the unwarp could not interpolate; count first.
+layout(set = 0, binding = 8, std430) buffer FixupList {
+  uint fixup_count;
+  uint fixup_pixels[];
+};
+// VkDispatchIndirectCommand for the fix-up pass.
+layout(set = 0, binding = 9, std430) buffer FixupArgs { uint fixup_groups[3]; };
+
+layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar; };
+
+#include "common/view_ray.glsl"
+#include "epipolar/epipolar_geometry.h"
+
+vec2 tyn_output_extent() { return vec2(frame.extent.xy); }
+
+#endif

@@ -332,7 +332,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   }
 
   // Host inputs: depth buffer and shadow maps, sampled by the compute pass.
-  ReferencePass::Bindings bindings;
+  ScatteringBindings bindings;
   bindings.constants = constants[slot].buffer;
   bindings.depth = frame.depth.view;
   bindings.depthLayout = sampledDepthLayout(frame.depth.layout);
@@ -355,20 +355,11 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   }
 
   if (bruteForce) {
-    // ReferencePass::Bindings and EpipolarTechnique::Bindings carry the same fields.
     reference.record(gpu, cmd, slot, bindings, extent);
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back("reference_scattering");
   } else {
-    EpipolarTechnique::Bindings epipolarBindings;
-    epipolarBindings.constants = bindings.constants;
-    epipolarBindings.depth = bindings.depth;
-    epipolarBindings.depthLayout = bindings.depthLayout;
-    epipolarBindings.shadowMaps = bindings.shadowMaps;
-    epipolarBindings.shadowLayouts = bindings.shadowLayouts;
-    epipolarBindings.scattering = bindings.scattering;
-    epipolarBindings.transmittance = bindings.transmittance;
-    epipolar.record(gpu, cmd, slot, epipolarBindings, epipolarConstants(frame, epipolarSettings), extent, timer,
+    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants(frame, epipolarSettings), extent, timer,
                     stats.passesRecorded);
     stats.marchedSamples = std::uint64_t(epipolarSettings.slices) * epipolarSettings.samplesPerSlice;
   }

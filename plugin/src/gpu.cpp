@@ -193,4 +193,40 @@ Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateShaderModule", result);
 }
 
+Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                              VkPipeline& out) {
+  VkShaderModule module = VK_NULL_HANDLE;
+  if (Outcome o = createShaderModule(gpu, spirv, module); !o) return o;
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.layout = layout;
+  VkResult result = gpu.vk.vkCreateComputePipelines(gpu.device, gpu.pipelineCache, 1, &info, gpu.allocator, &out);
+  gpu.vk.vkDestroyShaderModule(gpu.device, module, gpu.allocator);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateComputePipelines", result);
+}
+
+Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
+                               std::span<const VkDescriptorPoolSize> perSetSizes, VkDescriptorPool& pool,
+                               std::vector<VkDescriptorSet>& sets) {
+  const auto count = static_cast<std::uint32_t>(sets.size());
+  std::vector<VkDescriptorPoolSize> sizes(perSetSizes.begin(), perSetSizes.end());
+  for (VkDescriptorPoolSize& size : sizes) size.descriptorCount *= count;
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = count;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
+  poolInfo.pPoolSizes = sizes.data();
+  VkResult result = gpu.vk.vkCreateDescriptorPool(gpu.device, &poolInfo, gpu.allocator, &pool);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorPool", result);
+  std::vector<VkDescriptorSetLayout> layouts(count, layout);
+  VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  allocInfo.descriptorPool = pool;
+  allocInfo.descriptorSetCount = count;
+  allocInfo.pSetLayouts = layouts.data();
+  result = gpu.vk.vkAllocateDescriptorSets(gpu.device, &allocInfo, sets.data());
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateDescriptorSets", result);
+}
+
 }  // namespace tyndall

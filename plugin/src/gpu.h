@@ -2,9 +2,11 @@
 // and buffers with their memory, barriers, and pipelines from embedded SPIR-V.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "tyndall/tyndall.h"
 #include "vk_dispatch.h"
@@ -75,5 +77,24 @@ bool isDepthFormat(VkFormat format);
 
 Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
                            VkShaderModule& out);
+/// A compute pipeline from embedded SPIR-V (entry point "main").
+Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                              VkPipeline& out);
+/// A pool holding exactly `sets.size()` sets of `layout` (one per frame slot), and the sets.
+Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
+                               std::span<const VkDescriptorPoolSize> perSetSizes, VkDescriptorPool& pool,
+                               std::vector<VkDescriptorSet>& sets);
+
+/// What a scattering technique reads and writes in a frame: the host's depth buffer and shadow
+/// maps (readable by compute shaders) and Tyndall's L_in and T targets (storage, GENERAL).
+struct ScatteringBindings {
+  VkBuffer constants = VK_NULL_HANDLE;  ///< FrameConstants of the slot
+  VkImageView depth = VK_NULL_HANDLE;
+  VkImageLayout depthLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  std::array<VkImageView, kMaxShadowMaps> shadowMaps{};
+  std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
+  VkImageView scattering = VK_NULL_HANDLE;
+  VkImageView transmittance = VK_NULL_HANDLE;
+};
 
 }  // namespace tyndall

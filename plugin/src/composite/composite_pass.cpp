@@ -26,21 +26,9 @@ Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
   if (Outcome o = createShaderModule(gpu, shaders::composite_vert(), vertex_); !o) return o;
   if (Outcome o = createShaderModule(gpu, shaders::composite_frag(), fragment_); !o) return o;
 
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slots * 2};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = slots;
-  poolInfo.poolSizeCount = 1;
-  poolInfo.pPoolSizes = &size;
-  result = gpu.vk.vkCreateDescriptorPool(gpu.device, &poolInfo, gpu.allocator, &pool_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorPool", result);
-  std::vector<VkDescriptorSetLayout> layouts(slots, setLayout_);
+  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2};
   sets_.resize(slots);
-  VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  allocInfo.descriptorPool = pool_;
-  allocInfo.descriptorSetCount = slots;
-  allocInfo.pSetLayouts = layouts.data();
-  result = gpu.vk.vkAllocateDescriptorSets(gpu.device, &allocInfo, sets_.data());
-  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateDescriptorSets", result);
+  return allocateDescriptorSets(gpu, setLayout_, std::span(&size, 1), pool_, sets_);
 }
 
 void CompositePass::destroy(const Gpu& gpu) {

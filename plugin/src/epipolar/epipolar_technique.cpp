@@ -13,21 +13,6 @@ constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr std::uint32_t kBindings = 10;
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
-Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
-                              VkPipeline& out) {
-  VkShaderModule module = VK_NULL_HANDLE;
-  if (Outcome o = createShaderModule(gpu, spirv, module); !o) return o;
-  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  info.stage.module = module;
-  info.stage.pName = "main";
-  info.layout = layout;
-  VkResult result = gpu.vk.vkCreateComputePipelines(gpu.device, gpu.pipelineCache, 1, &info, gpu.allocator, &out);
-  gpu.vk.vkDestroyShaderModule(gpu.device, module, gpu.allocator);
-  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateComputePipelines", result);
-}
-
 std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
 
 }  // namespace
@@ -94,25 +79,13 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   }
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slots},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slots * (1 + kMaxShadowMaps)},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, slots * 5},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, slots * 2},
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 5},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
   }};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = slots;
-  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
-  poolInfo.pPoolSizes = sizes.data();
-  result = gpu.vk.vkCreateDescriptorPool(gpu.device, &poolInfo, gpu.allocator, &pool_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorPool", result);
-  std::vector<VkDescriptorSetLayout> layouts(slots, setLayout_);
   sets_.resize(slots);
-  VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  allocInfo.descriptorPool = pool_;
-  allocInfo.descriptorSetCount = slots;
-  allocInfo.pSetLayouts = layouts.data();
-  result = gpu.vk.vkAllocateDescriptorSets(gpu.device, &allocInfo, sets_.data());
-  if (result != VK_SUCCESS) return vkFailed("vkAllocateDescriptorSets", result);
+  if (Outcome o = allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_); !o) return o;
 
   fixupReadback_.resize(slots);
   fixupPending_.assign(slots, false);

@@ -22,16 +22,7 @@ Outcome validateEpipolarSettings(const EpipolarSettings& settings);
 
 class EpipolarTechnique {
  public:
-  /// Per-frame bindings of host and Tyndall images (as the Reference pass takes them).
-  struct Bindings {
-    VkBuffer constants = VK_NULL_HANDLE;
-    VkImageView depth = VK_NULL_HANDLE;
-    VkImageLayout depthLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    std::array<VkImageView, kMaxShadowMaps> shadowMaps{};
-    std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
-    VkImageView scattering = VK_NULL_HANDLE;     ///< L_in target, storage, GENERAL
-    VkImageView transmittance = VK_NULL_HANDLE;  ///< T target, storage, GENERAL
-  };
+  using Bindings = ScatteringBindings;
 
   Outcome create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots);
   void destroy(const Gpu& gpu);

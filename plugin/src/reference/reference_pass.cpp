@@ -26,38 +26,16 @@ Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  VkShaderModule module = VK_NULL_HANDLE;
-  if (Outcome o = createShaderModule(gpu, shaders::reference_scattering_comp(), module); !o) return o;
-  VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  pipelineInfo.stage.module = module;
-  pipelineInfo.stage.pName = "main";
-  pipelineInfo.layout = pipelineLayout_;
-  result = gpu.vk.vkCreateComputePipelines(gpu.device, gpu.pipelineCache, 1, &pipelineInfo, gpu.allocator, &pipeline_);
-  gpu.vk.vkDestroyShaderModule(gpu.device, module, gpu.allocator);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateComputePipelines", result);
-
+  if (Outcome o = createComputePipeline(gpu, pipelineLayout_, shaders::reference_scattering_comp(), pipeline_); !o) {
+    return o;
+  }
   const std::array<VkDescriptorPoolSize, 3> sizes{{
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slots},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slots * (1 + kMaxShadowMaps)},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, slots * 2},
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
   }};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = slots;
-  poolInfo.poolSizeCount = static_cast<std::uint32_t>(sizes.size());
-  poolInfo.pPoolSizes = sizes.data();
-  result = gpu.vk.vkCreateDescriptorPool(gpu.device, &poolInfo, gpu.allocator, &pool_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorPool", result);
-
-  std::vector<VkDescriptorSetLayout> layouts(slots, setLayout_);
   sets_.resize(slots);
-  VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  allocInfo.descriptorPool = pool_;
-  allocInfo.descriptorSetCount = slots;
-  allocInfo.pSetLayouts = layouts.data();
-  result = gpu.vk.vkAllocateDescriptorSets(gpu.device, &allocInfo, sets_.data());
-  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateDescriptorSets", result);
+  return allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_);
 }
 
 void ReferencePass::destroy(const Gpu& gpu) {

@@ -11,15 +11,7 @@ namespace tyndall {
 
 class ReferencePass {
  public:
-  struct Bindings {
-    VkBuffer constants = VK_NULL_HANDLE;
-    VkImageView depth = VK_NULL_HANDLE;
-    VkImageLayout depthLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    std::array<VkImageView, kMaxShadowMaps> shadowMaps{};
-    std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
-    VkImageView scattering = VK_NULL_HANDLE;     ///< storage, GENERAL
-    VkImageView transmittance = VK_NULL_HANDLE;  ///< storage, GENERAL
-  };
+  using Bindings = ScatteringBindings;
 
   Outcome create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots);
   void destroy(const Gpu& gpu);

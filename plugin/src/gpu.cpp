@@ -208,6 +208,16 @@ Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateComputePipelines", result);
 }
 
+std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadowMapImageInfos(const ScatteringBindings& b) {
+  std::array<VkDescriptorImageInfo, kMaxShadowMaps> infos{};
+  for (std::uint32_t i = 0; i < kMaxShadowMaps; ++i) {
+    const bool used = b.shadowMaps[i] != VK_NULL_HANDLE;
+    infos[i] = {VK_NULL_HANDLE, used ? b.shadowMaps[i] : b.shadowMaps[0],
+                used ? b.shadowLayouts[i] : b.shadowLayouts[0]};
+  }
+  return infos;
+}
+
 Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
                                std::span<const VkDescriptorPoolSize> perSetSizes, VkDescriptorPool& pool,
                                std::vector<VkDescriptorSet>& sets) {

@@ -97,4 +97,8 @@ struct ScatteringBindings {
   VkImageView transmittance = VK_NULL_HANDLE;
 };
 
+/// Descriptors of the shadow-map array; unused elements repeat map 0, because every element
+/// must be valid without the partiallyBound feature.
+std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadowMapImageInfos(const ScatteringBindings& bindings);
+
 }  // namespace tyndall

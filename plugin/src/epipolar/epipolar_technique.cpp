@@ -178,13 +178,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorSet set = sets_[slot];
   const VkDescriptorBufferInfo constants{b.constants, 0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
-  std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow{};
-  for (std::uint32_t i = 0; i < kMaxShadowMaps; ++i) {
-    // Unused array elements repeat map 0: every element must be valid without partiallyBound.
-    const bool used = b.shadowMaps[i] != VK_NULL_HANDLE;
-    shadow[i] = {VK_NULL_HANDLE, used ? b.shadowMaps[i] : b.shadowMaps[0],
-                 used ? b.shadowLayouts[i] : b.shadowLayouts[0]};
-  }
+  const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);
   const std::array<VkDescriptorImageInfo, 5> storage{{
       {VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL},
       {VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL},

@@ -51,13 +51,7 @@ void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
   const VkDescriptorSet set = sets_[slot];
   const VkDescriptorBufferInfo constants{b.constants, 0, sizeof(gpu::FrameConstants)};
   const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
-  std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow{};
-  for (std::uint32_t i = 0; i < kMaxShadowMaps; ++i) {
-    // Unused array elements repeat map 0: every element must be valid without partiallyBound.
-    const bool used = b.shadowMaps[i] != VK_NULL_HANDLE;
-    shadow[i] = {VK_NULL_HANDLE, used ? b.shadowMaps[i] : b.shadowMaps[0],
-                 used ? b.shadowLayouts[i] : b.shadowLayouts[0]};
-  }
+  const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);
   const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo transmittance{VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL};
 

@@ -37,7 +37,12 @@ void main() {
     uint count = tyn_slice_sample_count(end_points, extent, epipolar.counts.y, density,
                                         epipolar.counts.z != 0u);
     if (count == 0u || slice_weight <= 0.0) continue;
-    float k = tyn_sample_coordinate(tyn_slice_fraction(end_points, ndc), count, density);
+    float fraction = tyn_slice_fraction(end_points, ndc);
+    // A pixel before the slice's entry (the slice enters the screen further out, which happens
+    // when the epipole is just off screen) would extrapolate from samples it does not lie between.
+    float length_pixels = length((end_points.zw - end_points.xy) * 0.5 * extent);
+    if (-fraction * length_pixels > 1.0) continue;
+    float k = tyn_sample_coordinate(fraction, count, density);
     float k0 = floor(k);
     float k1 = min(k0 + 1.0, float(count - 1u));
     float along = k - k0;
@@ -53,10 +58,10 @@ void main() {
     }
   }
 
-  // Next to an on-screen light, in-scattering varies faster than any sample spacing can follow
-  // (1/d² of a local light, the phase peak): that block is ray-marched per pixel (klehm2014 Fig. 8).
-  bool near_epipole = epipolar.epipole.z > 0.0 &&
-                      tyn_epipole_on_screen(epipolar.epipole, extent) &&
+  // Next to the projected light, in-scattering varies faster than any sample spacing can follow
+  // (1/d² of a local light, the phase peak): that block is ray-marched per pixel (klehm2014
+  // Fig. 8). The light may sit just off screen and still have such pixels; at infinity it has none.
+  bool near_epipole = epipolar.epipole.z > 1e-6 &&
                       length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.params.w;
   if (weight_sum >= epipolar.params.z && !near_epipole) {
     imageStore(out_scattering, ivec2(pixel), vec4(sum / weight_sum, 0.0));

@@ -83,8 +83,8 @@ struct EpipolarSettings {
   /// A pixel whose bilateral weights sum to less than this is ray-marched by the fix-up pass,
   /// (0, 1], default 0.05.
   float fixupWeightThreshold = 0.05f;
-  /// Pixels within this many pixels of an on-screen projected light are ray-marched by the
-  /// fix-up pass (klehm2014's epipole block), [0, 256], default 8.
+  /// Pixels within this many pixels of the projected light (on screen or just off it) are
+  /// ray-marched by the fix-up pass (klehm2014's epipole block), [0, 256], default 8.
   float epipoleFixupRadius = 8.0f;
 };
 

@@ -11,6 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
+#include "vulkan_projection.h"
+
 #include "epipolar/epipolar_geometry.h"
 
 namespace {
@@ -24,23 +26,7 @@ using glm::dvec4;
 // ---------------------------------------------------------------------------------------------
 // Double-precision scaffolding
 
-// Vulkan clip depth [0, 1], y flipped (row 0 at the top), as in test_projection.cpp.
-dmat4 perspective(double fovY, double aspect, double n, double f, bool reversed) {
-  const double t = 1.0 / std::tan(fovY / 2.0);
-  dmat4 p(0.0);
-  p[0][0] = t / aspect;
-  p[1][1] = -t;
-  p[2][3] = -1.0;
-  const bool infinite = std::isinf(f);
-  if (!reversed) {
-    p[2][2] = infinite ? -1.0 : f / (n - f);
-    p[3][2] = infinite ? -n : f * n / (n - f);
-  } else {
-    p[2][2] = infinite ? 0.0 : n / (f - n);
-    p[3][2] = infinite ? n : f * n / (f - n);
-  }
-  return p;
-}
+using tyndall::test::vulkanPerspective;
 
 struct View {
   dvec3 position;
@@ -54,7 +40,7 @@ View makeView(dvec3 position, dvec3 target, dvec2 extent, bool reversed = false,
               double farPlane = 200.0) {
   View v;
   v.position = position;
-  v.viewProj = perspective(glm::radians(60.0), extent.x / extent.y, 0.1, farPlane, reversed) *
+  v.viewProj = vulkanPerspective(glm::radians(60.0), extent.x / extent.y, 0.1, farPlane, reversed) *
                glm::lookAt(position, target, dvec3(0.0, 1.0, 0.0));
   v.inverse = glm::inverse(v.viewProj);
   v.nearNdc = reversed ? 1.0 : 0.0;

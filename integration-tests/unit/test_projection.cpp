@@ -3,27 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include "vulkan_projection.h"
+
 #include "camera.h"
 
 namespace {
 
-// Vulkan clip depth [0, 1], built by hand so no GL convention leaks in.
-glm::dmat4 perspective(double fovY, double aspect, double n, double f, bool reversed) {
-  const double t = 1.0 / std::tan(fovY / 2.0);
-  glm::dmat4 p(0.0);
-  p[0][0] = t / aspect;
-  p[1][1] = -t;  // y flipped: row 0 at the top
-  p[2][3] = -1.0;
-  const bool infinite = std::isinf(f);
-  if (!reversed) {
-    p[2][2] = infinite ? -1.0 : f / (n - f);
-    p[3][2] = infinite ? -n : f * n / (n - f);
-  } else {
-    p[2][2] = infinite ? 0.0 : n / (f - n);
-    p[3][2] = infinite ? n : f * n / (f - n);
-  }
-  return p;
-}
+using tyndall::test::vulkanPerspective;
 
 struct Case {
   bool reversed;
@@ -33,7 +19,7 @@ struct Case {
 TEST(Projection, DetectsEveryConvention) {
   for (Case c : {Case{false, 200.0}, Case{true, 200.0}, Case{false, INFINITY}, Case{true, INFINITY}}) {
     tyndall::ProjectionInfo info;
-    const glm::dmat4 p = perspective(1.0, 16.0 / 9.0, 0.1, c.farPlane, c.reversed);
+    const glm::dmat4 p = vulkanPerspective(1.0, 16.0 / 9.0, 0.1, c.farPlane, c.reversed);
     ASSERT_TRUE(tyndall::analyzeProjection(glm::dmat4(glm::mat4(p)), info).ok());
     EXPECT_EQ(info.reversed, c.reversed);
     EXPECT_EQ(info.infiniteFar, std::isinf(c.farPlane));
@@ -51,33 +37,33 @@ TEST(Projection, FarToNearRatios) {
   for (double ratio : {10.0, 1e3, 1e5}) {
     for (bool reversed : {false, true}) {
       tyndall::ProjectionInfo info;
-      const glm::dmat4 p = glm::dmat4(glm::mat4(perspective(1.0, 1.0, 0.01, 0.01 * ratio, reversed)));
+      const glm::dmat4 p = glm::dmat4(glm::mat4(vulkanPerspective(1.0, 1.0, 0.01, 0.01 * ratio, reversed)));
       ASSERT_TRUE(tyndall::analyzeProjection(p, info).ok()) << ratio;
       EXPECT_FALSE(info.infiniteFar) << ratio;
       EXPECT_NEAR(info.farDistance / (0.01 * ratio), 1.0, 0.05) << ratio << " reversed " << reversed;
     }
   }
   tyndall::ProjectionInfo info;
-  ASSERT_TRUE(tyndall::analyzeProjection(glm::dmat4(glm::mat4(perspective(1.0, 1.0, 0.01, 1e7, false))), info).ok());
+  ASSERT_TRUE(tyndall::analyzeProjection(glm::dmat4(glm::mat4(vulkanPerspective(1.0, 1.0, 0.01, 1e7, false))), info).ok());
   EXPECT_TRUE(info.infiniteFar);
 }
 
 TEST(Projection, RejectsBadMatrices) {
   tyndall::ProjectionInfo info;
   EXPECT_FALSE(tyndall::analyzeProjection(glm::dmat4(0.0), info).ok());  // singular
-  glm::dmat4 nan = perspective(1.0, 1.0, 0.1, 100.0, false);
+  glm::dmat4 nan = vulkanPerspective(1.0, 1.0, 0.1, 100.0, false);
   nan[0][0] = NAN;
   EXPECT_FALSE(tyndall::analyzeProjection(nan, info).ok());
   EXPECT_FALSE(tyndall::analyzeProjection(glm::dmat4(1.0), info).ok());  // orthographic
   // A standard-Z matrix built with near and far swapped is exactly a reverse-Z matrix and is
   // accepted as one; a far plane behind the camera (here far = −5) is near >= far.
-  const glm::dmat4 swapped = perspective(1.0, 1.0, 100.0, 0.1, false);
+  const glm::dmat4 swapped = vulkanPerspective(1.0, 1.0, 100.0, 0.1, false);
   ASSERT_TRUE(tyndall::analyzeProjection(swapped, info).ok());
   EXPECT_TRUE(info.reversed);
   EXPECT_NEAR(info.nearDistance, 0.1, 1e-9);
   EXPECT_NEAR(info.farDistance, 100.0, 1e-9);
   for (bool reversed : {false, true}) {
-    const glm::dmat4 behind = perspective(1.0, 1.0, 0.1, -5.0, reversed);
+    const glm::dmat4 behind = vulkanPerspective(1.0, 1.0, 0.1, -5.0, reversed);
     const tyndall::Outcome o = tyndall::analyzeProjection(behind, info);
     EXPECT_FALSE(o.ok());
     EXPECT_EQ(o.status, tyndall::Status::InvalidArgument);

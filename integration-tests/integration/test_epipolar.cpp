@@ -1,7 +1,7 @@
-// The epipolar technique (first stage: every epipolar sample ray-marched with the Reference's
-// walk, bilateral unwarp, fix-up) against the Reference in the same run. Directional scenes
-// only so far: on spot-lamp this stage measures 5% relative RMSE (the bar is 3%), see the
-// epipolar issue's notes.
+// The epipolar technique (sparse ray-marching samples refined at depth breaks and marched with
+// the Reference's walk, interpolation along the slices, bilateral unwarp, fix-up) against the
+// Reference in the same run. Directional scenes only so far: on spot-lamp this stage measures
+// 5% relative RMSE (the bar is 3%), see docs/EPIPOLAR.md.
 #include <algorithm>
 #include <cmath>
 
@@ -26,6 +26,9 @@ samples::RenderOptions options(Technique technique) {
   EpipolarSettings epipolar;
   epipolar.slices = 256;
   epipolar.samplesPerSlice = 128;
+  // Every 8th sample ray-marched, plus depth breaks: at this small size a step of 16 spans a
+  // tenth of the screen (5.7% relative RMSE on analytic-mixed; 1.3% with 8, 0.43% with 4).
+  epipolar.initialSampleStep = 8;
   o.epipolar = epipolar;
   return o;
 }
@@ -48,15 +51,18 @@ class EpipolarScenes : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(EpipolarScenes, MatchesTheReference) {
   const Comparison c = compareWithReference(loadTestScene(GetParam()));
-  std::printf("[ %s ] epipolar vs reference: %s; fixed up %.2f%% of the pixels\n", GetParam(),
-              describe(c.stats).c_str(), c.epipolar.stats.fixedUpPixelFraction * 100.0);
+  std::printf("[ %s ] epipolar vs reference: %s; fixed up %.2f%% of the pixels; %llu samples marched\n",
+              GetParam(), describe(c.stats).c_str(), c.epipolar.stats.fixedUpPixelFraction * 100.0,
+              static_cast<unsigned long long>(c.epipolar.stats.marchedSamples));
   EXPECT_EQ(c.epipolar.stats.technique, Technique::Epipolar);
   EXPECT_EQ(c.stats.nonFinite, 0u);
-  // The High profile's bar in the epipolar issue; measured 0.21–0.26% on these scenes.
+  // The High profile's bar in the epipolar issue; measured 0.28–1.3% on these scenes.
   EXPECT_LE(c.stats.relativeRmse, 0.03) << describe(c.stats);
   EXPECT_GE(c.epipolar.stats.fixedUpPixelFraction, 0.0);
   EXPECT_LT(c.epipolar.stats.fixedUpPixelFraction, 0.5);
-  EXPECT_EQ(c.epipolar.stats.marchedSamples, 256u * 128u);
+  // Sparse ray marching: far fewer marched samples than pixels.
+  EXPECT_GT(c.epipolar.stats.marchedSamples, 0u);
+  EXPECT_LT(c.epipolar.stats.marchedSamples, std::uint64_t(kWidth) * kHeight / 2);
   expectNoValidationMessages();
 }
 

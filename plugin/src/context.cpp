@@ -63,7 +63,9 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
           : gpu::tyn_epipole_clip_local(viewProj, glm::make_vec3(light.position.data()));
   gpu::EpipolarConstants k{};
   k.epipole = gpu::tyn_epipole(lightClip);
-  k.counts = glm::uvec4(settings.slices, settings.samplesPerSlice, settings.improvedSamplePlacement ? 1u : 0u, 0u);
+  k.counts = glm::uvec4(settings.slices, settings.samplesPerSlice, settings.improvedSamplePlacement ? 1u : 0u,
+                        settings.initialSampleStep);
+  k.refinement = glm::vec4(settings.refinementThreshold, 0.0f, 0.0f, 0.0f);
   k.params = glm::vec4(settings.epipoleDensity, settings.bilateralDepthThreshold, settings.fixupWeightThreshold,
                          settings.epipoleFixupRadius);
   return k;
@@ -287,10 +289,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 
   stats.requestedProfile = frame.profile;
   stats.passesRecorded.clear();
-  stats.marchedSamples = 0;
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
-  if (const std::int64_t fixedUp = epipolar.takeFixupCount(slot); fixedUp >= 0) {
+  if (std::uint32_t fixedUp = 0, marched = 0; epipolar.takeCounts(slot, fixedUp, marched)) {
     stats.fixedUpPixelFraction = static_cast<double>(fixedUp) / (double(extent.width) * extent.height);
+    stats.marchedSamples = marched;
   }
 
   if (!setup.attenuates) {
@@ -361,7 +363,6 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   } else {
     epipolar.record(gpu, cmd, slot, bindings, epipolarConstants(frame, epipolarSettings), extent, timer,
                     stats.passesRecorded);
-    stats.marchedSamples = std::uint64_t(epipolarSettings.slices) * epipolarSettings.samplesPerSlice;
   }
   releaseDepth(frame.depth, bindings.depthLayout);
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {

@@ -40,7 +40,8 @@ void GpuTimer::beginFrame(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slo
 void GpuTimer::beginPass(const Gpu& gpu, VkCommandBuffer cmd, const char* name) {
   if (!supported()) return;
   Slot& s = slots_[current_];
-  if (s.passes.size() >= kMaxPasses) return;
+  passOpen_ = s.passes.size() < kMaxPasses;
+  if (!passOpen_) return;
   const std::uint32_t query = current_ * kMaxPasses * 2 + static_cast<std::uint32_t>(s.passes.size()) * 2;
   s.passes.emplace_back(name);
   // BOTTOM_OF_PIPE: the stamp is taken once all earlier work has finished.
@@ -49,8 +50,9 @@ void GpuTimer::beginPass(const Gpu& gpu, VkCommandBuffer cmd, const char* name) 
 
 void GpuTimer::endPass(const Gpu& gpu, VkCommandBuffer cmd) {
   if (!supported()) return;
+  if (!passOpen_) return;
+  passOpen_ = false;
   Slot& s = slots_[current_];
-  if (s.passes.empty() || s.passes.size() > kMaxPasses) return;
   const std::uint32_t query = current_ * kMaxPasses * 2 + static_cast<std::uint32_t>(s.passes.size()) * 2 - 1;
   gpu.vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, query);
 }

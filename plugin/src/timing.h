@@ -13,8 +13,8 @@ namespace tyndall {
 
 class GpuTimer {
  public:
-  /// Up to this many timed passes per frame.
-  static constexpr std::uint32_t kMaxPasses = 8;
+  /// Up to this many timed passes per frame; later passes run untimed (and unlisted in the timings).
+  static constexpr std::uint32_t kMaxPasses = 32;
 
   Outcome create(const Gpu& gpu, std::uint32_t slots, std::uint32_t queueFamilyIndex);
   void destroy(const Gpu& gpu);
@@ -43,6 +43,7 @@ class GpuTimer {
   std::uint64_t validMask_ = ~0ull;
   std::vector<Slot> slots_;
   std::uint32_t current_ = 0;
+  bool passOpen_ = false;  // beginPass wrote the pass's first stamp; endPass writes its second
   std::vector<FrameTimings> completed_;
   FrameTimings latest_;
   bool haveLatest_ = false;

@@ -17,13 +17,19 @@ layout(set = 0, binding = 4, rgba32f) uniform image2D epipolar_coordinates;
 layout(set = 0, binding = 5, rgba32f) uniform image2D epipolar_scattering;
 layout(set = 0, binding = 6, rgba32f) uniform image2D out_scattering;
 layout(set = 0, binding = 7, rgba32f) uniform image2D out_transmittance;
-// Pixels the unwarp could not interpolate; count first.
+// Pixels the unwarp could not interpolate, with their count, and the count of ray-marched
+// epipolar samples (both read back for the stats).
 layout(set = 0, binding = 8, std430) buffer FixupList {
   uint fixup_count;
+  uint marched_count;
+  uint fixup_reserved[2];
   uint fixup_pixels[];
 };
 // VkDispatchIndirectCommand for the fix-up pass.
 layout(set = 0, binding = 9, std430) buffer FixupArgs { uint fixup_groups[3]; };
+// Per (sample, slice): the ray-marched samples it is interpolated from, left | right << 16
+// (both equal to the sample itself when it is ray-marched; TYN_EPIPOLAR_NO_SOURCE if invalid).
+layout(set = 0, binding = 10, r32ui) uniform uimage2D interpolation_source;
 
 layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar; };
 

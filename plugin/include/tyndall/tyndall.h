@@ -76,6 +76,11 @@ struct EpipolarSettings {
   std::uint32_t slices = 512;            ///< epipolar slices (lines from the epipole to the border), 8..4096
   std::uint32_t samplesPerSlice = 256;   ///< samples along each slice, 2..4096
   bool improvedSamplePlacement = true;   ///< a short slice uses only ≈ one sample per pixel (yusov2013)
+  /// Every n-th sample along a slice is ray-marched (and the last one), 1..4096, default 16.
+  std::uint32_t initialSampleStep = 16;
+  /// Relative difference of view-ray length between neighbouring samples that makes both of them
+  /// ray-marched samples (a depth break), (0, 1], default 0.03.
+  float refinementThreshold = 0.03f;
   float epipoleDensity = 1.0f;           ///< last / first sample spacing along a slice, [1, 1000]; 1 = uniform
   /// Relative difference of view-ray length up to which an epipolar sample is interpolated into
   /// a pixel (the bilateral filter of the unwarp), (0, 1], default 0.05.
@@ -258,7 +263,8 @@ struct Stats {
   FrameTimings lastTimings;
   bool timingsValid = false;
   bool timestampsSupported = false;
-  /// Epipolar technique: samples ray-marched in the last frame (slices × samples per slice).
+  /// Epipolar technique: samples ray-marched (initial step plus depth breaks), from the same
+  /// earlier frame as `fixedUpPixelFraction`; 0 until one is known.
   std::uint64_t marchedSamples = 0;
   /// Epipolar technique: fraction of the pixels the fix-up pass ray-marched, from the same
   /// earlier frame as `lastTimings`; negative until one is known.

@@ -10,7 +10,9 @@ namespace {
 
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
-constexpr std::uint32_t kBindings = 10;
+constexpr std::uint32_t kBindings = 11;
+// The fix-up list's header: fix-up count, marched-sample count, two reserved words.
+constexpr VkDeviceSize kFixupHeaderWords = 4;
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
 std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
@@ -29,6 +31,10 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   }
   if (!(s.fixupWeightThreshold > 0.0f && s.fixupWeightThreshold <= 1.0f)) {
     return invalid("epipolar.fixupWeightThreshold must be in (0, 1]");
+  }
+  if (s.initialSampleStep < 1 || s.initialSampleStep > 4096) return invalid("epipolar.initialSampleStep must be in 1..4096");
+  if (!(s.refinementThreshold > 0.0f && s.refinementThreshold <= 1.0f)) {
+    return invalid("epipolar.refinementThreshold must be in (0, 1]");
   }
   if (!(s.epipoleFixupRadius >= 0.0f && s.epipoleFixupRadius <= 256.0f)) {
     return invalid("epipolar.epipoleFixupRadius must be in [0, 256]");
@@ -50,6 +56,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
       {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
       {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = kBindings;
@@ -66,10 +73,12 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 6> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 8> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
+      {&refinePipeline_, shaders::refine_comp()},
       {&marchPipeline_, shaders::march_comp()},
+      {&interpolatePipeline_, shaders::interpolate_comp()},
       {&unwarpPipeline_, shaders::unwarp_comp()},
       {&fixupArgsPipeline_, shaders::fixup_args_comp()},
       {&fixupPipeline_, shaders::fixup_comp()},
@@ -81,7 +90,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 5},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 6},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
   }};
   sets_.resize(slots);
@@ -90,7 +99,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   fixupReadback_.resize(slots);
   fixupPending_.assign(slots, false);
   for (MappedBuffer& buffer : fixupReadback_) {
-    if (Outcome o = createMappedBuffer(gpu, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
+    if (Outcome o = createMappedBuffer(gpu, 2 * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
       return o;
     }
   }
@@ -99,6 +108,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
 }
 
 void EpipolarTechnique::destroyTextures(const Gpu& gpu, SampleTextures& textures) {
+  destroyImage(gpu, textures.interpolationSource);
   destroyImage(gpu, textures.scattering);
   destroyImage(gpu, textures.coordinates);
   destroyImage(gpu, textures.endPoints);
@@ -116,8 +126,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   for (MappedBuffer& buffer : fixupReadback_) destroyBuffer(gpu, buffer);
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
-  for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, marchPipeline_, unwarpPipeline_,
-                              fixupArgsPipeline_, fixupPipeline_}) {
+  for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, marchPipeline_,
+                              interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_, fixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
   if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
@@ -128,7 +138,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 Outcome EpipolarTechnique::resize(const Gpu& gpu, VkExtent2D extent) {
   destroySizeDependent(gpu);
   const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height;
-  return createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
+  return createDeviceBuffer(gpu, (entries + kFixupHeaderWords) * sizeof(std::uint32_t),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             fixupList_);
@@ -160,6 +170,10 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
     outcome = createImage(gpu, kSampleFormat, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
                           fresh.scattering);
   }
+  if (outcome) {
+    outcome = createImage(gpu, VK_FORMAT_R32_UINT, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
+                          fresh.interpolationSource);
+  }
   if (!outcome) {
     destroyTextures(gpu, fresh);
     return outcome;
@@ -168,10 +182,13 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   return {};
 }
 
-std::int64_t EpipolarTechnique::takeFixupCount(std::uint32_t slot) {
-  if (slot >= fixupPending_.size() || !fixupPending_[slot]) return -1;
+bool EpipolarTechnique::takeCounts(std::uint32_t slot, std::uint32_t& fixedUp, std::uint32_t& marched) {
+  if (slot >= fixupPending_.size() || !fixupPending_[slot]) return false;
   fixupPending_[slot] = false;
-  return *static_cast<const std::uint32_t*>(fixupReadback_[slot].mapped);
+  const auto* counts = static_cast<const std::uint32_t*>(fixupReadback_[slot].mapped);
+  fixedUp = counts[0];
+  marched = counts[1];
+  return true;
 }
 
 void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& b) {
@@ -179,6 +196,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorBufferInfo constants{b.constants, 0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
   const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);
+  const VkDescriptorImageInfo source{VK_NULL_HANDLE, textures_.interpolationSource.view, VK_IMAGE_LAYOUT_GENERAL};
   const std::array<VkDescriptorImageInfo, 5> storage{{
       {VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL},
       {VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL},
@@ -189,7 +207,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorBufferInfo list{fixupList_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo args{fixupArgs_.buffer, 0, VK_WHOLE_SIZE};
 
-  std::array<VkWriteDescriptorSet, 5 + 5> writes{};
+  std::array<VkWriteDescriptorSet, kBindings> writes{};
   auto write = [&](std::size_t i, std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = set;
@@ -206,6 +224,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   }
   write(8, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &list;
   write(9, 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
+  write(10, 10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &source;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
@@ -232,20 +251,25 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   };
 
   // The sample textures are rewritten every frame: earlier contents (and reads) are discarded.
-  for (const OwnedImage* image : {&textures_.endPoints, &textures_.coordinates, &textures_.scattering}) {
+  for (const OwnedImage* image : {&textures_.endPoints, &textures_.coordinates, &textures_.scattering,
+                                  &textures_.interpolationSource}) {
     imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
                  {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
   }
-  // The fix-up count starts at zero; the previous frame's indirect read must be done first.
+  // The counts start at zero; the previous frame's indirect read must be done first.
   memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-  gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
+  gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, kFixupHeaderWords * sizeof(std::uint32_t), 0);
 
   pass("epipolar_slice_end_points", slicePipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
   pass("epipolar_coordinates", coordinatesPipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+  pass("epipolar_refine", refinePipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
   pass("epipolar_march", marchPipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+  pass("epipolar_interpolate", interpolatePipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_unwarp", unwarpPipeline_, [&] {
     gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
@@ -262,10 +286,10 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   timer.endPass(gpu, cmd);
   passes.emplace_back("epipolar_fixup");
 
-  // The count goes to the slot's readback buffer, read when the slot comes round again.
+  // The counts go to the slot's readback buffer, read when the slot comes round again.
   memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                 VK_ACCESS_TRANSFER_READ_BIT);
-  const VkBufferCopy copy{0, 0, sizeof(std::uint32_t)};
+  const VkBufferCopy copy{0, 0, 2 * sizeof(std::uint32_t)};
   gpu.vk.vkCmdCopyBuffer(cmd, fixupList_.buffer, fixupReadback_[slot].buffer, 1, &copy);
   memoryBarrier(gpu, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                 VK_ACCESS_HOST_READ_BIT);

@@ -40,15 +40,16 @@ class EpipolarTechnique {
               const gpu::EpipolarConstants& constants, VkExtent2D extent, GpuTimer& timer,
               std::vector<std::string>& passes);
 
-  /// Pixels the fix-up pass handled in the slot's previous frame (it has completed when the slot
-  /// comes round again), or -1 when unknown.
-  std::int64_t takeFixupCount(std::uint32_t slot);
+  /// Pixels the fix-up pass handled and samples ray-marched in the slot's previous frame (it has
+  /// completed when the slot comes round again); false when unknown.
+  bool takeCounts(std::uint32_t slot, std::uint32_t& fixedUp, std::uint32_t& marched);
 
  private:
   struct SampleTextures {
     OwnedImage endPoints;    // slices × 1
     OwnedImage coordinates;  // samples × slices
     OwnedImage scattering;   // samples × slices
+    OwnedImage interpolationSource;  // samples × slices, R32_UINT
     std::uint32_t slices = 0;
     std::uint32_t samples = 0;
   };
@@ -64,17 +65,19 @@ class EpipolarTechnique {
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   VkPipeline slicePipeline_ = VK_NULL_HANDLE;
   VkPipeline coordinatesPipeline_ = VK_NULL_HANDLE;
+  VkPipeline refinePipeline_ = VK_NULL_HANDLE;
   VkPipeline marchPipeline_ = VK_NULL_HANDLE;
+  VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupPipeline_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
-  std::vector<MappedBuffer> fixupReadback_;  // per slot: the fix-up count, read a lap later
+  std::vector<MappedBuffer> fixupReadback_;  // per slot: fix-up and marched counts, read a lap later
   std::vector<bool> fixupPending_;
   MappedBuffer fixupArgs_;                   // VkDispatchIndirectCommand
   // Size-dependent.
-  MappedBuffer fixupList_;                   // count, then one packed pixel per entry
+  MappedBuffer fixupList_;                   // counts (4 words), then one packed pixel per entry
   SampleTextures textures_;
   std::vector<Retired> retired_;
   std::uint64_t frameIndex_ = 0;

@@ -1,10 +1,7 @@
 #include "test_support.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstdlib>
 #include <memory>
-#include <sstream>
 
 namespace tyndall::test {
 
@@ -41,48 +38,12 @@ host::Scene loadTestScene(const std::string& name) {
   return *loaded.scene;
 }
 
-namespace {
-
-ErrorStats compare(const host::ImageRgba32f& measured, auto reference, std::size_t pixelCount,
-                   const std::vector<unsigned char>* mask) {
-  ErrorStats stats;
-  std::vector<double> errors;
-  double sumSquared = 0.0;
-  double sumReference = 0.0;
-  for (std::size_t i = 0; i < pixelCount; ++i) {
-    if (mask != nullptr && (*mask)[i] == 0) continue;
-    for (std::size_t c = 0; c < 3; ++c) {
-      const double m = measured.pixels[i * 4 + c];
-      const double r = reference(i, c);
-      if (!std::isfinite(m)) {
-        ++stats.nonFinite;
-        continue;
-      }
-      const double e = m - r;
-      sumSquared += e * e;
-      sumReference += std::abs(r);
-      errors.push_back(std::abs(e));
-    }
-  }
-  stats.samples = errors.size();
-  if (errors.empty()) return stats;
-  stats.meanReference = sumReference / static_cast<double>(errors.size());
-  const double scale = stats.meanReference > 0.0 ? stats.meanReference : 1.0;
-  stats.relativeRmse = std::sqrt(sumSquared / static_cast<double>(errors.size())) / scale;
-  std::sort(errors.begin(), errors.end());
-  stats.relativeP99 = errors[static_cast<std::size_t>(0.99 * static_cast<double>(errors.size() - 1))] / scale;
-  stats.relativeMax = errors.back() / scale;
-  return stats;
-}
-
-}  // namespace
-
 ErrorStats compareRgb(const host::ImageRgba32f& measured, const std::vector<double>& referenceRgb,
                       const std::vector<unsigned char>* mask) {
   const std::size_t pixels = static_cast<std::size_t>(measured.width) * measured.height;
   EXPECT_EQ(referenceRgb.size(), pixels * 3);
   if (referenceRgb.size() != pixels * 3) return {};
-  return compare(measured, [&](std::size_t i, std::size_t c) { return referenceRgb[i * 3 + c]; }, pixels, mask);
+  return samples::compareRgb(measured, referenceRgb, mask);
 }
 
 ErrorStats compareRgb(const host::ImageRgba32f& measured, const host::ImageRgba32f& reference,
@@ -90,17 +51,7 @@ ErrorStats compareRgb(const host::ImageRgba32f& measured, const host::ImageRgba3
   const std::size_t pixels = static_cast<std::size_t>(measured.width) * measured.height;
   EXPECT_EQ(reference.pixels.size(), pixels * 4);
   if (reference.pixels.size() != pixels * 4) return {};
-  return compare(
-      measured, [&](std::size_t i, std::size_t c) { return static_cast<double>(reference.pixels[i * 4 + c]); },
-      pixels, mask);
-}
-
-std::string describe(const ErrorStats& s) {
-  std::ostringstream out;
-  out << "relative RMSE " << s.relativeRmse * 100.0 << "%, p99 " << s.relativeP99 * 100.0 << "%, max "
-      << s.relativeMax * 100.0 << "%, NaN/Inf " << s.nonFinite << ", mean |ref| " << s.meanReference << " over "
-      << s.samples << " values";
-  return out.str();
+  return samples::compareRgb(measured, reference, mask);
 }
 
 samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOptions options) {

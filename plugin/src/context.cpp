@@ -6,6 +6,7 @@
 #include "composite/composite_pass.h"
 #include "epipolar/epipolar_geometry.h"
 #include "epipolar/epipolar_technique.h"
+#include "epipolar/min_max_tree.h"
 #include "frame_setup.h"
 #include "gpu.h"
 #include "profiles.h"
@@ -68,7 +69,24 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.refinement = glm::vec4(settings.refinementThreshold, 0.0f, 0.0f, 0.0f);
   k.params = glm::vec4(settings.epipoleDensity, settings.bilateralDepthThreshold, settings.fixupWeightThreshold,
                          settings.epipoleFixupRadius);
+  // Directional and spot lights march along each slice's line in shadow map 0; a point light's
+  // rays cross six maps, so its samples take the Reference's walk. The tree's level 0 lives in
+  // the build pass's shared memory, which bounds L (maps larger than 4096² march every cell).
+  if (light.type != LightType::Point) {
+    const int samples = gpu::tyn_min_max_sample_count(static_cast<int>(frame.shadowMaps[0].depth.extent.width));
+    const bool tree = settings.minMaxTree && samples <= static_cast<int>(gpu::TYN_EPIPOLAR_TREE_MAX_SAMPLES);
+    const int topLevel = std::min(gpu::tyn_min_max_level_for_max_step(static_cast<int>(settings.maxTreeStep)),
+                                  gpu::tyn_min_max_highest_level(samples));
+    k.tree = glm::uvec4(static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(topLevel), tree ? 1u : 0u, 0u);
+  }
   return k;
+}
+
+// What the epipolar technique's march does this frame, for the stats.
+std::string epipolarMarchNote(const gpu::EpipolarConstants& k, const EpipolarSettings& settings) {
+  if (k.tree.x == 0) return "; point light: samples marched with the texel walk (no single slice line)";
+  if (k.tree.z != 0) return "";
+  return settings.minMaxTree ? "; shadow map above 4096^2: march without the min/max tree" : "; min/max tree off";
 }
 
 }  // namespace
@@ -102,7 +120,7 @@ struct Context::Impl {
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
-                        const EpipolarSettings& epipolarSettings);
+                        const gpu::EpipolarConstants& epipolarConstants);
   void recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets);
 };
 
@@ -281,8 +299,13 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     technique = Technique::Reference;
     note += "; output smaller than 2x2: Reference instead of epipolar";
   }
+  gpu::EpipolarConstants epipolarK{};
   if (technique == Technique::Epipolar) {
-    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, stats.frameIndex, desc.maxFramesInFlight); !o) {
+    epipolarK = epipolarConstants(frame, epipolarSettings);
+    note += epipolarMarchNote(epipolarK, epipolarSettings);
+    const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
+    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, stats.frameIndex, desc.maxFramesInFlight);
+        !o) {
       return fail(o);
     }
   }
@@ -304,7 +327,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.technique = technique;
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
-    recordScattering(cmd, slot, frame, technique, epipolarSettings);
+    recordScattering(cmd, slot, frame, technique, epipolarK);
     recordAovs(cmd, frame, true);
   }
 
@@ -317,7 +340,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 }
 
 void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                                     Technique technique, const EpipolarSettings& epipolarSettings) {
+                                     Technique technique, const gpu::EpipolarConstants& epipolarConstants) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
 
@@ -361,8 +384,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back("reference_scattering");
   } else {
-    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants(frame, epipolarSettings), extent, timer,
-                    stats.passesRecorded);
+    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, extent, timer, stats.passesRecorded);
   }
   releaseDepth(frame.depth, bindings.depthLayout);
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {

@@ -35,6 +35,60 @@ bool parseProfile(const std::string& name, Profile& out) {
   return false;
 }
 
+bool parseFloat(const std::string& text, float& out) {
+  float value = 0.0f;
+  const char* end = text.data() + text.size();
+  auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (ec != std::errc() || ptr != end) return false;
+  out = value;
+  return true;
+}
+
+// --epipolar KEY=VALUE[,KEY=VALUE…] over EpipolarSettings' defaults. Ranges are the plugin's to
+// check (a frame with an invalid value fails with the field's name); only the syntax is checked here.
+bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::string& error) {
+  EpipolarSettings s;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    const std::size_t eq = item.find('=');
+    const std::string key = item.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
+    std::uint32_t u = 0;
+    const auto uintField = [&](std::uint32_t& field) { return parseUint(value, 0, 1u << 30, field); };
+    const auto boolField = [&](bool& field) {
+      if (!parseUint(value, 0, 1, u)) return false;
+      field = u != 0;
+      return true;
+    };
+    bool ok = false;
+    if (key == "slices") ok = uintField(s.slices);
+    else if (key == "samples") ok = uintField(s.samplesPerSlice);
+    else if (key == "initial-step") ok = uintField(s.initialSampleStep);
+    else if (key == "refinement") ok = parseFloat(value, s.refinementThreshold);
+    else if (key == "density") ok = parseFloat(value, s.epipoleDensity);
+    else if (key == "improved-placement") ok = boolField(s.improvedSamplePlacement);
+    else if (key == "tree") ok = boolField(s.minMaxTree);
+    else if (key == "max-tree-step") ok = uintField(s.maxTreeStep);
+    else if (key == "bilateral") ok = parseFloat(value, s.bilateralDepthThreshold);
+    else if (key == "fixup-weight") ok = parseFloat(value, s.fixupWeightThreshold);
+    else if (key == "epipole-radius") ok = parseFloat(value, s.epipoleFixupRadius);
+    else {
+      error = "--epipolar: unknown key '" + key + "' (keys: slices, samples, initial-step, refinement, density, "
+              "improved-placement, tree, max-tree-step, bilateral, fixup-weight, epipole-radius)";
+      return false;
+    }
+    if (!ok) {
+      error = "--epipolar: bad value for " + key + " (got '" + value + "')";
+      return false;
+    }
+    begin = end + 1;
+  }
+  out = s;
+  return true;
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -49,7 +103,11 @@ std::string usage() {
          "         [--technique reference|epipolar] [--width W] [--height H] [--shadow-map-size N]\n"
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
-         "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n";
+         "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
+         "         [--epipolar KEY=VALUE[,KEY=VALUE...]]\n"
+         "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
+         "    slices, samples, initial-step, refinement, density, improved-placement (0|1), tree (0|1),\n"
+         "    max-tree-step, bilateral, fixup-weight, epipole-radius\n";
 }
 
 bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options, bool& help, std::string& error) {
@@ -120,6 +178,11 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       options.infiniteFar = true;
     } else if (arg == "--validation") {
       options.validation = true;
+    } else if (arg == "--epipolar") {
+      if (!value(v)) return false;
+      EpipolarSettings settings;
+      if (!parseEpipolarSettings(v, settings, error)) return false;
+      options.epipolar = settings;
     } else if (arg == "--no-effect") {
       options.noEffect = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -218,6 +281,10 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
     if (perPass.contains(name)) passes[name] = median(perPass[name]);
   }
   json["passMilliseconds"] = passes;
+  if (result.stats.technique == Technique::Epipolar) {
+    json["marchedSamples"] = result.stats.marchedSamples;
+    json["fixedUpPixelFraction"] = result.stats.fixedUpPixelFraction;
+  }
   json["totalMilliseconds"] = median(totals);
   json["wallMillisecondsPerFrame"] = result.wallMillisecondsPerFrame;
   json["tyndallInserted"] = !options.noEffect;

@@ -17,12 +17,9 @@ layout(set = 0, binding = 4, rgba32f) uniform image2D epipolar_coordinates;
 layout(set = 0, binding = 5, rgba32f) uniform image2D epipolar_scattering;
 layout(set = 0, binding = 6, rgba32f) uniform image2D out_scattering;
 layout(set = 0, binding = 7, rgba32f) uniform image2D out_transmittance;
-// Pixels the unwarp could not interpolate, with their count, and the count of ray-marched
-// epipolar samples (both read back for the stats).
+// Pixels the unwarp could not interpolate, count first (read back for the stats).
 layout(set = 0, binding = 8, std430) buffer FixupList {
   uint fixup_count;
-  uint marched_count;
-  uint fixup_reserved[2];
   uint fixup_pixels[];
 };
 // VkDispatchIndirectCommand for the fix-up pass.
@@ -30,6 +27,20 @@ layout(set = 0, binding = 9, std430) buffer FixupArgs { uint fixup_groups[3]; };
 // Per (sample, slice): the ray-marched samples it is interpolated from, left | right << 16
 // (both equal to the sample itself when it is ray-marched; TYN_EPIPOLAR_NO_SOURCE if invalid).
 layout(set = 0, binding = 10, r32ui) uniform uimage2D interpolation_source;
+// Per slice: where its line starts in shadow-map UV and its unit direction (yusov2013 "Slice UV
+// origin & direction"), TYN_EPIPOLAR_INVALID_COORD when tyn_slice_shadow_uv found none.
+layout(set = 0, binding = 11, rgba32f) uniform image2D slice_uv;
+// One row per slice: its 1D min/max binary tree, level after level (min_max_tree.h's layout).
+layout(set = 0, binding = 12, rg32f) uniform image2D min_max_tree;
+// The ray-marching samples the refinement chose, sample | slice << 16, with their count (read back
+// for the stats) and the VkDispatchIndirectCommand that runs one march thread per entry: marching
+// a compact list keeps every lane busy, where a thread per (sample, slice) would idle all but one
+// in `initial step`.
+layout(set = 0, binding = 13, std430) buffer MarchList {
+  uint march_groups[3];
+  uint march_count;
+  uint march_samples[];
+};
 
 layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar; };
 
@@ -37,5 +48,13 @@ layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar
 #include "epipolar/epipolar_geometry.h"
 
 vec2 tyn_output_extent() { return vec2(frame.extent.xy); }
+
+// Depth of a texel of shadow map 0 (the one a slice's tree is built on), 1 (no occluder) outside
+// the map: min_max_tree.h's TYN_MIN_MAX_SHADOW_TEXEL.
+float tyn_epipolar_shadow_texel(ivec2 texel) {
+  int size = int(frame.counts.w);
+  if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) return 1.0;
+  return texelFetch(shadow_maps[0], texel, 0).r;
+}
 
 #endif

@@ -6,11 +6,19 @@
 
 TYN_BEGIN
 
-// Workgroup sizes: one thread per slice, per (sample, slice), per pixel, per fixed-up pixel.
+// Workgroup sizes: one thread per slice, per fixed-up pixel, per ray-marching sample.
 TYN_CONST uint TYN_EPIPOLAR_SLICE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_FIXUP_GROUP = 64u;
+TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;
 // Interpolation source of a sample past the slice's sample count.
 TYN_CONST uint TYN_EPIPOLAR_NO_SOURCE = 0xffffffffu;
+// Near the epipole the ray-marching step is at most 1/this of the distance to it (refine.comp).
+TYN_CONST float TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS = 4.0f;
+// Threads building one slice's min/max tree (one workgroup per slice).
+TYN_CONST uint TYN_EPIPOLAR_TREE_GROUP = 128u;
+// Largest L whose level 0 fits the tree pass's shared memory (L/2 nodes of 8 bytes: 16 KiB, half of
+// lavapipe's 32 KiB) and whose tree fits one texture row (L − 1 texels).
+TYN_CONST uint TYN_EPIPOLAR_TREE_MAX_SAMPLES = 4096u;
 
 struct EpipolarConstants {
   vec4 epipole;      // homogeneous epipole (tyn_epipole): x, y, w, side
@@ -21,6 +29,10 @@ struct EpipolarConstants {
                      // w: radius in pixels around an on-screen epipole that is always fixed up
   vec4 refinement;   // x: relative depth break between neighbouring samples that makes both
                      // of them ray-marched samples
+  uvec4 tree;        // x: 1D samples per slice L (a power of two ≥ the shadow-map size), 0 when
+                     //    the marched samples use the Reference's walk instead (point lights);
+                     // y: highest tree level the march may use (yusov2013's maximum step);
+                     // z: 1 = march along the min/max tree, 0 = the plain march (every cell)
 };
 
 TYN_END

@@ -1,23 +1,109 @@
 #version 460
-// Ray marching of the epipolar samples the refinement chose: the Reference's exact texel walk,
-// run for those samples instead of every pixel.
+// Ray marching of the epipolar samples the refinement chose (yusov2013 "1D min/max binary
+// trees"). Every view ray of a slice projects onto the slice's line in the shadow map, so the
+// march runs along that line in its 1D parameter u: with the tree, fully lit sections are
+// integrated in one step, fully shadowed ones skipped and mixed ones descended; without it, every
+// cell is tested (the same lit set: the tree is exact). Lit sections of a directional light are
+// integrated in closed form; a spot light's by quadrature of the exact integrand. Point lights
+// (six maps, no single line) and slices without a line in the map use the Reference's texel walk.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 #include "reference/reference_march.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+// The slice and the view ray being marched, for the accessors of min_max_tree.h below.
+int g_slice;
+vec2 g_origin_texels;
+vec2 g_step_texels;
+vec3 g_ray_origin;
+vec3 g_ray_direction;
+// Through a projective shadow matrix u is a linear-fractional function of the view distance,
+// u = (a0 + a1 t) / (p + q t); its inverse gives a spot light's lit section back in t.
+vec4 g_u_of_t;  // (a0, a1, p, q)
+
+float tyn_march_t_of_u(float u) {
+  return (g_u_of_t.x - u * g_u_of_t.z) / (u * g_u_of_t.w - g_u_of_t.y);
+}
+
+vec3 tyn_march_local_light(float u_a, float u_b) {
+  float t_a = tyn_march_t_of_u(u_a);
+  float t_b = tyn_march_t_of_u(u_b);
+  return tyn_local_light_segment(g_ray_origin, g_ray_direction, min(t_a, t_b), max(t_a, t_b));
+}
+
+#define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(texel)
+#define TYN_MIN_MAX_SAMPLE(k) tyn_min_max_cell_sample(g_origin_texels, g_step_texels, k)
+#define TYN_MIN_MAX_FETCH(level, index) \
+  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree.x), level) + (index), g_slice)).xy
+#define TYN_MIN_MAX_INTEGRATE(ray, a, b)                                                   \
+  (frame.counts.x == TYN_LIGHT_DIRECTIONAL ? tyn_min_max_directional_integral(ray, a, b) \
+                                           : tyn_march_local_light(a, b))
+#include "epipolar/min_max_tree.h"
+
+layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
+
+// L_in along [0, s] of the view ray, marched along the slice's line (origin_direction from
+// slice_uv).
+vec3 tyn_march_along_slice(int slice, vec4 origin_direction, vec3 origin, vec3 dir, float s) {
+  float size = float(frame.counts.w);
+  g_slice = slice;
+  g_origin_texels = vec2(origin_direction.x, origin_direction.y) * size;
+  g_step_texels = tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w));
+  g_ray_origin = origin;
+  g_ray_direction = dir;
+  bool directional = frame.counts.x == TYN_LIGHT_DIRECTIONAL;
+
+  // The part of the ray inside the map (a directional light's square slab, a spot light's
+  // frustum); outside it a directional light is unshadowed and a spot light does not reach.
+  TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
+  float t_in = 0.0;
+  float t_out = s;
+  bool inside = tyn_clip_to_shadow_map(r, t_in, t_out);
+  vec3 unshadowed = vec3(0.0);
+  if (directional) {
+    unshadowed = inside ? tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb) +
+                              tyn_transmittance_integral(t_out, s, frame.extinction.rgb)
+                        : tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
+  }
+  vec3 lit = vec3(0.0);
+  if (inside) {
+    // Homogeneous texel coordinates of the ray, relative to the line's origin, projected on the
+    // step: u = (a0 + a1 t) / (p + q t).
+    float inv_step2 = 1.0 / dot(g_step_texels, g_step_texels);
+    vec2 rel0 = (vec2(r.h0.x, r.h0.y) * 0.5 + 0.5 * r.h0.w) * size - r.h0.w * g_origin_texels;
+    vec2 rel1 = (vec2(r.h1.x, r.h1.y) * 0.5 + 0.5 * r.h1.w) * size - r.h1.w * g_origin_texels;
+    g_u_of_t = vec4(dot(rel0, g_step_texels) * inv_step2, dot(rel1, g_step_texels) * inv_step2, r.h0.w, r.h1.w);
+    vec4 h_in = r.h0 + t_in * r.h1;
+    vec4 h_out = r.h0 + t_out * r.h1;
+    float u_in = (g_u_of_t.x + g_u_of_t.y * t_in) / h_in.w;
+    float u_out = (g_u_of_t.x + g_u_of_t.y * t_out) / h_out.w;
+    TynMinMaxRay ray = tyn_min_max_ray(u_in, u_out, h_in.z / h_in.w, h_out.z / h_out.w, t_in, t_out,
+                                       frame.extinction.rgb);
+    int sample_count = int(epipolar.tree.x);
+    TynMinMaxMarch march = epipolar.tree.z != 0u
+                               ? tyn_min_max_march_tree(sample_count, int(epipolar.tree.y), ray)
+                               : tyn_min_max_march_plain(sample_count, ray);
+    lit = march.lit_integral;
+  }
+  if (!directional) return lit;
+  float cos_theta = dot(dir, -frame.light_direction.xyz);
+  return frame.light_radiance.rgb * tyn_phase_weighted_scattering(cos_theta) * (unshadowed + lit);
+}
 
 void main() {
-  uvec2 id = gl_GlobalInvocationID.xy;  // x: sample, y: slice
-  if (id.x >= epipolar.counts.y || id.y >= epipolar.counts.x) return;
-  // Only the samples the refinement chose are ray-marched; the others are interpolated next.
-  uint source = imageLoad(interpolation_source, ivec2(id)).x;
-  if (source != TYN_EPIPOLAR_NO_SOURCE && (source & 0xffffu) != id.x) return;
+  // One thread per entry of the march list; the others are interpolated next.
+  if (gl_GlobalInvocationID.x >= march_count) return;
+  uint packed = march_samples[gl_GlobalInvocationID.x];
+  uvec2 id = uvec2(packed & 0xffffu, packed >> 16);  // x: sample, y: slice
   vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(id));
   vec3 in_scattering = vec3(0.0);
   if (coordinates.w > 0.5 && frame.extent.z != 0u) {
-    in_scattering = tyn_reference_in_scattering(frame.view_to_world[3].xyz,
-                                                tyn_view_direction(coordinates.xy), coordinates.z);
+    vec3 origin = frame.view_to_world[3].xyz;
+    vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
+    vec4 origin_direction = epipolar.tree.x != 0u ? imageLoad(slice_uv, ivec2(id.y, 0))
+                                                   : vec4(TYN_EPIPOLAR_INVALID_COORD);
+    in_scattering = tyn_slice_valid(origin_direction)
+                        ? tyn_march_along_slice(int(id.y), origin_direction, origin, dir, coordinates.z)
+                        : tyn_reference_in_scattering(origin, dir, coordinates.z);
   }
   imageStore(epipolar_scattering, ivec2(id), vec4(in_scattering, 0.0));
 }

@@ -120,6 +120,22 @@ TYN_FUNC int tyn_min_max_level_for_max_step(int max_step_samples) {
   return findMSB(max_step_samples) - 1;
 }
 
+// L for a shadow map of `shadow_size` texels: the power of two ≥ the size (and ≥ 2), so that L
+// cells of max-norm one texel span any line through the map.
+TYN_FUNC int tyn_min_max_sample_count(int shadow_size) {
+  return 1 << (findMSB(max(shadow_size, 2) - 1) + 1);
+}
+
+// The recommended step for a line with direction `direction` (any length): max-norm one texel.
+TYN_FUNC vec2 tyn_min_max_step_texels(vec2 direction) {
+  return direction / max(abs(direction.x), abs(direction.y));
+}
+
+// The 1D parameter u of a point of the line (texel units): p(u) = origin + u · step.
+TYN_FUNC float tyn_min_max_u(vec2 origin_texels, vec2 step_texels, vec2 point_texels) {
+  return dot(point_texels - origin_texels, step_texels) / dot(step_texels, step_texels);
+}
+
 // ---- Building ----
 
 // A node from its two children (min of mins, max of maxes); also level 0 from two cells' bounds.

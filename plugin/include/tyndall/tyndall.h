@@ -82,6 +82,13 @@ struct EpipolarSettings {
   /// ray-marched samples (a depth break), (0, 1], default 0.03.
   float refinementThreshold = 0.03f;
   float epipoleDensity = 1.0f;           ///< last / first sample spacing along a slice, [1, 1000]; 1 = uniform
+  /// March along each slice's 1D min/max binary tree (yusov2013): same result as without, fewer
+  /// steps. Directional and spot lights with shadow maps up to 4096²; point lights and larger maps
+  /// march without it (the stats' techniqueNote says so). Default true.
+  bool minMaxTree = true;
+  /// Longest section (in 1D samples, about one shadow-map texel each) the tree march takes in one
+  /// step: limits the tree's depth (yusov2013's maximum step). A power of two in 2..4096, default 1024.
+  std::uint32_t maxTreeStep = 1024;
   /// Relative difference of view-ray length up to which an epipolar sample is interpolated into
   /// a pixel (the bilateral filter of the unwarp), (0, 1], default 0.05.
   float bilateralDepthThreshold = 0.05f;

@@ -10,9 +10,10 @@ namespace {
 
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
-constexpr std::uint32_t kBindings = 11;
-// The fix-up list's header: fix-up count, marched-sample count, two reserved words.
-constexpr VkDeviceSize kFixupHeaderWords = 4;
+constexpr std::uint32_t kBindings = 14;
+// The march list's header: VkDispatchIndirectCommand, then the count (epipolar_common.glsl).
+constexpr VkDeviceSize kMarchHeaderWords = 4;
+constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
 std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
@@ -36,6 +37,9 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   if (!(s.refinementThreshold > 0.0f && s.refinementThreshold <= 1.0f)) {
     return invalid("epipolar.refinementThreshold must be in (0, 1]");
   }
+  if (s.maxTreeStep < 2 || s.maxTreeStep > 4096 || (s.maxTreeStep & (s.maxTreeStep - 1)) != 0) {
+    return invalid("epipolar.maxTreeStep must be a power of two in 2..4096");
+  }
   if (!(s.epipoleFixupRadius >= 0.0f && s.epipoleFixupRadius <= 256.0f)) {
     return invalid("epipolar.epipoleFixupRadius must be in [0, 256]");
   }
@@ -57,6 +61,9 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
       {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
       {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
       {10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
   }};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = kBindings;
@@ -73,10 +80,13 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 8> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 11> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
+      {&sliceUvPipeline_, shaders::slice_uv_comp()},
+      {&treePipeline_, shaders::min_max_tree_comp()},
+      {&marchArgsPipeline_, shaders::march_args_comp()},
       {&marchPipeline_, shaders::march_comp()},
       {&interpolatePipeline_, shaders::interpolate_comp()},
       {&unwarpPipeline_, shaders::unwarp_comp()},
@@ -90,8 +100,8 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 6},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
   }};
   sets_.resize(slots);
   if (Outcome o = allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_); !o) return o;
@@ -108,6 +118,9 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
 }
 
 void EpipolarTechnique::destroyTextures(const Gpu& gpu, SampleTextures& textures) {
+  destroyBuffer(gpu, textures.marchList);
+  destroyImage(gpu, textures.tree);
+  destroyImage(gpu, textures.sliceUv);
   destroyImage(gpu, textures.interpolationSource);
   destroyImage(gpu, textures.scattering);
   destroyImage(gpu, textures.coordinates);
@@ -126,8 +139,9 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   for (MappedBuffer& buffer : fixupReadback_) destroyBuffer(gpu, buffer);
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
-  for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, marchPipeline_,
-                              interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_, fixupPipeline_}) {
+  for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
+                              marchArgsPipeline_, marchPipeline_, interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_,
+                              fixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
   if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
@@ -138,14 +152,14 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 Outcome EpipolarTechnique::resize(const Gpu& gpu, VkExtent2D extent) {
   destroySizeDependent(gpu);
   const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height;
-  return createDeviceBuffer(gpu, (entries + kFixupHeaderWords) * sizeof(std::uint32_t),
+  return createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                 VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                             fixupList_);
 }
 
-Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint64_t frameIndex,
-                                   std::uint32_t framesInFlight) {
+Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
+                                   std::uint64_t frameIndex, std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
   // Frame f has completed once frame f + framesInFlight is being recorded.
   std::erase_if(retired_, [&](Retired& retired) {
@@ -153,7 +167,14 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
     destroyTextures(gpu, retired.textures);
     return true;
   });
-  if (textures_.slices == settings.slices && textures_.samples == settings.samplesPerSlice) return {};
+  // A tree of L 1D samples takes L − 1 texels per row; without one a 1 × 1 texture keeps the
+  // descriptor valid.
+  const std::uint32_t treeWidth = treeSamples > 1 ? treeSamples - 1 : 1;
+  const std::uint32_t treeRows = treeSamples > 1 ? settings.slices : 1;
+  if (textures_.slices == settings.slices && textures_.samples == settings.samplesPerSlice &&
+      textures_.treeWidth == treeWidth) {
+    return {};
+  }
   if (textures_.slices != 0) {
     retired_.push_back({frameIndex == 0 ? 0 : frameIndex - 1, textures_});
     textures_ = SampleTextures{};
@@ -161,6 +182,7 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   SampleTextures fresh;
   fresh.slices = settings.slices;
   fresh.samples = settings.samplesPerSlice;
+  fresh.treeWidth = treeWidth;
   Outcome outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.endPoints);
   if (outcome) {
     outcome = createImage(gpu, kSampleFormat, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
@@ -173,6 +195,15 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   if (outcome) {
     outcome = createImage(gpu, VK_FORMAT_R32_UINT, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
                           fresh.interpolationSource);
+  }
+  if (outcome) outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.sliceUv);
+  if (outcome) outcome = createImage(gpu, VK_FORMAT_R32G32_SFLOAT, {treeWidth, treeRows}, kSampleUsage, fresh.tree);
+  if (outcome) {
+    const VkDeviceSize entries = VkDeviceSize(settings.slices) * settings.samplesPerSlice;
+    outcome = createDeviceBuffer(gpu, (kMarchHeaderWords + entries) * sizeof(std::uint32_t),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                 fresh.marchList);
   }
   if (!outcome) {
     destroyTextures(gpu, fresh);
@@ -197,6 +228,8 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
   const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);
   const VkDescriptorImageInfo source{VK_NULL_HANDLE, textures_.interpolationSource.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo sliceUv{VK_NULL_HANDLE, textures_.sliceUv.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo tree{VK_NULL_HANDLE, textures_.tree.view, VK_IMAGE_LAYOUT_GENERAL};
   const std::array<VkDescriptorImageInfo, 5> storage{{
       {VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL},
       {VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL},
@@ -206,6 +239,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   }};
   const VkDescriptorBufferInfo list{fixupList_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo args{fixupArgs_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo marchList{textures_.marchList.buffer, 0, VK_WHOLE_SIZE};
 
   std::array<VkWriteDescriptorSet, kBindings> writes{};
   auto write = [&](std::size_t i, std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
@@ -225,6 +259,9 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   write(8, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &list;
   write(9, 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
   write(10, 10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &source;
+  write(11, 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &sliceUv;
+  write(12, 12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &tree;
+  write(13, 13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &marchList;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
@@ -252,14 +289,15 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
 
   // The sample textures are rewritten every frame: earlier contents (and reads) are discarded.
   for (const OwnedImage* image : {&textures_.endPoints, &textures_.coordinates, &textures_.scattering,
-                                  &textures_.interpolationSource}) {
+                                  &textures_.interpolationSource, &textures_.sliceUv, &textures_.tree}) {
     imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
                  {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
   }
   // The counts start at zero; the previous frame's indirect read must be done first.
   memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
-  gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, kFixupHeaderWords * sizeof(std::uint32_t), 0);
+  gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
+  gpu.vk.vkCmdFillBuffer(cmd, textures_.marchList.buffer, 0, kMarchHeaderWords * sizeof(std::uint32_t), 0);
 
   pass("epipolar_slice_end_points", slicePipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
@@ -267,8 +305,24 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_refine", refinePipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-  pass("epipolar_march", marchPipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+  // Each slice's line in the shadow map and its min/max tree: only for the lights that march
+  // along one line (directional, spot), the tree only when the march uses it.
+  if (constants.tree.x != 0) {
+    pass("epipolar_slice_uv", sliceUvPipeline_,
+         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+    if (constants.tree.z != 0) {
+      pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+    }
+  }
+  pass("epipolar_march_args", marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+  // One thread per listed sample, sized on the GPU.
+  timer.beginPass(gpu, cmd, "epipolar_march");
+  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, marchPipeline_);
+  gpu.vk.vkCmdDispatchIndirect(cmd, textures_.marchList.buffer, 0);
+  timer.endPass(gpu, cmd);
+  passes.emplace_back("epipolar_march");
   pass("epipolar_interpolate", interpolatePipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_unwarp", unwarpPipeline_, [&] {
@@ -289,8 +343,10 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   // The counts go to the slot's readback buffer, read when the slot comes round again.
   memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                 VK_ACCESS_TRANSFER_READ_BIT);
-  const VkBufferCopy copy{0, 0, 2 * sizeof(std::uint32_t)};
-  gpu.vk.vkCmdCopyBuffer(cmd, fixupList_.buffer, fixupReadback_[slot].buffer, 1, &copy);
+  const VkBufferCopy fixupCount{0, 0, sizeof(std::uint32_t)};
+  const VkBufferCopy marchCount{kMarchCountOffset, sizeof(std::uint32_t), sizeof(std::uint32_t)};
+  gpu.vk.vkCmdCopyBuffer(cmd, fixupList_.buffer, fixupReadback_[slot].buffer, 1, &fixupCount);
+  gpu.vk.vkCmdCopyBuffer(cmd, textures_.marchList.buffer, fixupReadback_[slot].buffer, 1, &marchCount);
   memoryBarrier(gpu, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                 VK_ACCESS_HOST_READ_BIT);
   fixupPending_[slot] = true;

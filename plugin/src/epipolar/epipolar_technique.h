@@ -29,10 +29,11 @@ class EpipolarTechnique {
   /// The fix-up list holds every pixel: rebuilt with the output extent.
   Outcome resize(const Gpu& gpu, VkExtent2D extent);
 
-  /// Makes the sample textures match `settings`. Textures of other sizes are kept until no frame
-  /// in flight can use them (frames in flight need no stall when the parameters change).
-  Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint64_t frameIndex,
-                  std::uint32_t framesInFlight);
+  /// Makes the sample textures match `settings` and the tree texture hold `treeSamples` 1D
+  /// samples per slice (0: no tree is built this frame). Textures of other sizes are kept until no
+  /// frame in flight can use them (frames in flight need no stall when the parameters change).
+  Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
+                  std::uint64_t frameIndex, std::uint32_t framesInFlight);
 
   /// Records every pass; each is timed and appended to `passes`. The host inputs must already
   /// be readable by compute shaders and the targets writable (GENERAL).
@@ -50,8 +51,12 @@ class EpipolarTechnique {
     OwnedImage coordinates;  // samples × slices
     OwnedImage scattering;   // samples × slices
     OwnedImage interpolationSource;  // samples × slices, R32_UINT
+    OwnedImage sliceUv;      // slices × 1: line origin and direction in shadow-map UV
+    OwnedImage tree;         // (L − 1) × slices, RG32F: one min/max tree per row; 1 × 1 when unused
+    MappedBuffer marchList;  // dispatch args, count, then up to slices × samples packed samples
     std::uint32_t slices = 0;
     std::uint32_t samples = 0;
+    std::uint32_t treeWidth = 0;
   };
   struct Retired {
     std::uint64_t lastFrame = 0;
@@ -66,6 +71,9 @@ class EpipolarTechnique {
   VkPipeline slicePipeline_ = VK_NULL_HANDLE;
   VkPipeline coordinatesPipeline_ = VK_NULL_HANDLE;
   VkPipeline refinePipeline_ = VK_NULL_HANDLE;
+  VkPipeline sliceUvPipeline_ = VK_NULL_HANDLE;
+  VkPipeline treePipeline_ = VK_NULL_HANDLE;
+  VkPipeline marchArgsPipeline_ = VK_NULL_HANDLE;
   VkPipeline marchPipeline_ = VK_NULL_HANDLE;
   VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
@@ -77,7 +85,7 @@ class EpipolarTechnique {
   std::vector<bool> fixupPending_;
   MappedBuffer fixupArgs_;                   // VkDispatchIndirectCommand
   // Size-dependent.
-  MappedBuffer fixupList_;                   // counts (4 words), then one packed pixel per entry
+  MappedBuffer fixupList_;                   // count, then one packed pixel per entry
   SampleTextures textures_;
   std::vector<Retired> retired_;
   std::uint64_t frameIndex_ = 0;

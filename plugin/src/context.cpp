@@ -384,7 +384,8 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back("reference_scattering");
   } else {
-    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, extent, timer, stats.passesRecorded);
+    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, frame.light.type, extent, timer,
+                    stats.passesRecorded);
   }
   releaseDepth(frame.depth, bindings.depthLayout);
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {

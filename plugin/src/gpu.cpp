@@ -194,7 +194,7 @@ Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
 }
 
 Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
-                              VkPipeline& out) {
+                              VkPipeline& out, const VkSpecializationInfo* specialization) {
   VkShaderModule module = VK_NULL_HANDLE;
   if (Outcome o = createShaderModule(gpu, spirv, module); !o) return o;
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
@@ -202,6 +202,7 @@ Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
+  info.stage.pSpecializationInfo = specialization;
   info.layout = layout;
   VkResult result = gpu.vk.vkCreateComputePipelines(gpu.device, gpu.pipelineCache, 1, &info, gpu.allocator, &out);
   gpu.vk.vkDestroyShaderModule(gpu.device, module, gpu.allocator);

@@ -77,9 +77,9 @@ bool isDepthFormat(VkFormat format);
 
 Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
                            VkShaderModule& out);
-/// A compute pipeline from embedded SPIR-V (entry point "main").
+/// A compute pipeline from embedded SPIR-V (entry point "main"), optionally specialised.
 Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
-                              VkPipeline& out);
+                              VkPipeline& out, const VkSpecializationInfo* specialization = nullptr);
 /// A pool holding exactly `sets.size()` sets of `layout` (one per frame slot), and the sets.
 Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
                                std::span<const VkDescriptorPoolSize> perSetSizes, VkDescriptorPool& pool,

@@ -34,9 +34,12 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
 #define TYN_MIN_MAX_SAMPLE(k) tyn_min_max_cell_sample(g_origin_texels, g_step_texels, k)
 #define TYN_MIN_MAX_FETCH(level, index) \
   imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree.x), level) + (index), g_slice)).xy
-#define TYN_MIN_MAX_INTEGRATE(ray, a, b)                                                   \
-  (frame.counts.x == TYN_LIGHT_DIRECTIONAL ? tyn_min_max_directional_integral(ray, a, b) \
-                                           : tyn_march_local_light(a, b))
+// The pipeline is specialised per kind of light, so that the compiler drops the other integral:
+// a run-time choice here costs the directional march several times its time on a CPU driver, whose
+// vectorised code evaluates both sides of the branch.
+layout(constant_id = 0) const bool TYN_MARCH_LOCAL_LIGHT = false;
+#define TYN_MIN_MAX_INTEGRATE(ray, a, b) \
+  (TYN_MARCH_LOCAL_LIGHT ? tyn_march_local_light(a, b) : tyn_min_max_directional_integral(ray, a, b))
 #include "epipolar/min_max_tree.h"
 
 layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;

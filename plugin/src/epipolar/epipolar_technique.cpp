@@ -96,6 +96,14 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   for (const auto& [pipeline, spirv] : pipelines) {
     if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
   }
+  // march.comp's TYN_MARCH_LOCAL_LIGHT (constant_id 0).
+  const VkBool32 local = VK_TRUE;
+  const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
+  const VkSpecializationInfo localLight{1, &entry, sizeof(local), &local};
+  if (Outcome o = createComputePipeline(gpu, pipelineLayout_, shaders::march_comp(), marchLocalPipeline_, &localLight);
+      !o) {
+    return o;
+  }
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
@@ -140,7 +148,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
-                              marchArgsPipeline_, marchPipeline_, interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_,
+                              marchArgsPipeline_, marchPipeline_, marchLocalPipeline_, interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_,
                               fixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
@@ -266,8 +274,8 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
 }
 
 void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
-                               const gpu::EpipolarConstants& constants, VkExtent2D extent, GpuTimer& timer,
-                               std::vector<std::string>& passes) {
+                               const gpu::EpipolarConstants& constants, LightType light, VkExtent2D extent,
+                               GpuTimer& timer, std::vector<std::string>& passes) {
   writeDescriptors(gpu, slot, bindings);
   const VkDescriptorSet set = sets_[slot];
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
@@ -319,7 +327,8 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   timer.beginPass(gpu, cmd, "epipolar_march");
   memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                 readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, marchPipeline_);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                           light == LightType::Directional ? marchPipeline_ : marchLocalPipeline_);
   gpu.vk.vkCmdDispatchIndirect(cmd, textures_.marchList.buffer, 0);
   timer.endPass(gpu, cmd);
   passes.emplace_back("epipolar_march");

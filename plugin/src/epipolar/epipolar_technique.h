@@ -38,7 +38,7 @@ class EpipolarTechnique {
   /// Records every pass; each is timed and appended to `passes`. The host inputs must already
   /// be readable by compute shaders and the targets writable (GENERAL).
   void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
-              const gpu::EpipolarConstants& constants, VkExtent2D extent, GpuTimer& timer,
+              const gpu::EpipolarConstants& constants, LightType light, VkExtent2D extent, GpuTimer& timer,
               std::vector<std::string>& passes);
 
   /// Pixels the fix-up pass handled and samples ray-marched in the slot's previous frame (it has
@@ -74,7 +74,8 @@ class EpipolarTechnique {
   VkPipeline sliceUvPipeline_ = VK_NULL_HANDLE;
   VkPipeline treePipeline_ = VK_NULL_HANDLE;
   VkPipeline marchArgsPipeline_ = VK_NULL_HANDLE;
-  VkPipeline marchPipeline_ = VK_NULL_HANDLE;
+  VkPipeline marchPipeline_ = VK_NULL_HANDLE;       // directional light
+  VkPipeline marchLocalPipeline_ = VK_NULL_HANDLE;  // spot and point lights
   VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;

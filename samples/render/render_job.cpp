@@ -67,6 +67,7 @@ bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::
     else if (key == "samples") ok = uintField(s.samplesPerSlice);
     else if (key == "initial-step") ok = uintField(s.initialSampleStep);
     else if (key == "refinement") ok = parseFloat(value, s.refinementThreshold);
+    else if (key == "intensity-refinement") ok = parseFloat(value, s.intensityRefinementThreshold);
     else if (key == "density") ok = parseFloat(value, s.epipoleDensity);
     else if (key == "improved-placement") ok = boolField(s.improvedSamplePlacement);
     else if (key == "tree") ok = boolField(s.minMaxTree);
@@ -75,8 +76,8 @@ bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::
     else if (key == "fixup-weight") ok = parseFloat(value, s.fixupWeightThreshold);
     else if (key == "epipole-radius") ok = parseFloat(value, s.epipoleFixupRadius);
     else {
-      error = "--epipolar: unknown key '" + key + "' (keys: slices, samples, initial-step, refinement, density, "
-              "improved-placement, tree, max-tree-step, bilateral, fixup-weight, epipole-radius)";
+      error = "--epipolar: unknown key '" + key + "' (keys: slices, samples, initial-step, refinement, "
+              "intensity-refinement, density, improved-placement, tree, max-tree-step, bilateral, fixup-weight, epipole-radius)";
       return false;
     }
     if (!ok) {
@@ -106,7 +107,8 @@ std::string usage() {
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
          "         [--epipolar KEY=VALUE[,KEY=VALUE...]]\n"
          "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
-         "    slices, samples, initial-step, refinement, density, improved-placement (0|1), tree (0|1),\n"
+         "    slices, samples, initial-step, refinement, intensity-refinement, density, improved-placement (0|1),\n"
+         "    tree (0|1),"
          "    max-tree-step, bilateral, fixup-weight, epipole-radius\n";
 }
 

@@ -33,12 +33,16 @@ layout(set = 0, binding = 11, rgba32f) uniform image2D slice_uv;
 // One row per slice: its 1D min/max binary tree, level after level (min_max_tree.h's layout).
 layout(set = 0, binding = 12, rg32f) uniform image2D min_max_tree;
 // The ray-marching samples the refinement chose, sample | slice << 16, with their count (read back
-// for the stats) and the VkDispatchIndirectCommand that runs one march thread per entry: marching
-// a compact list keeps every lane busy, where a thread per (sample, slice) would idle all but one
-// in `initial step`.
+// for the stats) and the VkDispatchIndirectCommand that runs one march thread per entry of the
+// current round: marching a compact list keeps every lane busy, where a thread per (sample, slice)
+// would idle all but one in `initial step`. Round 1 marches [0, n1), round 2 (the samples that
+// refine_intensity.comp adds) [n1, n2); march_args.comp starts each round.
 layout(set = 0, binding = 13, std430) buffer MarchList {
   uint march_groups[3];
-  uint march_count;
+  uint march_count;        // entries so far
+  uint march_first;        // first entry of the current round
+  uint march_round_end;    // entries when the current round started (the next round's first)
+  uint march_reserved[2];
   uint march_samples[];
 };
 

@@ -14,6 +14,8 @@ TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_NO_SOURCE = 0xffffffffu;
 // Near the epipole the ray-marching step is at most 1/this of the distance to it (refine.comp).
 TYN_CONST float TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS = 4.0f;
+// An interval refine_intensity.comp refines is cut into this many (the initial step into quarters).
+TYN_CONST uint TYN_EPIPOLAR_SUBDIVISIONS = 4u;
 // Threads building one slice's min/max tree (one workgroup per slice).
 TYN_CONST uint TYN_EPIPOLAR_TREE_GROUP = 128u;
 // Largest L whose level 0 fits the tree pass's shared memory (L/2 nodes of 8 bytes: 16 KiB, half of
@@ -28,7 +30,8 @@ struct EpipolarConstants {
                      // z: minimum bilateral weight before a pixel is fixed up;
                      // w: radius in pixels around an on-screen epipole that is always fixed up
   vec4 refinement;   // x: relative depth break between neighbouring samples that makes both
-                     // of them ray-marched samples
+                     // of them ray-marched samples; y: relative L_in difference between
+                     // neighbouring ray-marched samples that subdivides the interval (second round)
   uvec4 tree;        // x: 1D samples per slice L (a power of two ≥ the shadow-map size), 0 when
                      //    the marched samples use the Reference's walk instead (point lights);
                      // y: highest tree level the march may use (yusov2013's maximum step);

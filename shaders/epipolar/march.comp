@@ -93,9 +93,10 @@ vec3 tyn_march_along_slice(int slice, vec4 origin_direction, vec3 origin, vec3 d
 }
 
 void main() {
-  // One thread per entry of the march list; the others are interpolated next.
-  if (gl_GlobalInvocationID.x >= march_count) return;
-  uint packed = march_samples[gl_GlobalInvocationID.x];
+  // One thread per entry of this round of the march list; the others are interpolated later.
+  uint entry = march_first + gl_GlobalInvocationID.x;
+  if (entry >= march_round_end) return;
+  uint packed = march_samples[entry];
   uvec2 id = uvec2(packed & 0xffffu, packed >> 16);  // x: sample, y: slice
   vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(id));
   vec3 in_scattering = vec3(0.0);

@@ -81,6 +81,11 @@ struct EpipolarSettings {
   /// Relative difference of view-ray length between neighbouring samples that makes both of them
   /// ray-marched samples (a depth break), (0, 1], default 0.03.
   float refinementThreshold = 0.03f;
+  /// Second round of refinement: where the L_in of neighbouring ray-marched samples differs by
+  /// more than this fraction of the larger, the interval between them gets 3 more ray-marching
+  /// samples (shadow and cone edges crossing a slice, fast falloff). (0, 1], default 0.2;
+  /// 1 turns the second round off (its passes are then not recorded).
+  float intensityRefinementThreshold = 0.2f;
   float epipoleDensity = 1.0f;           ///< last / first sample spacing along a slice, [1, 1000]; 1 = uniform
   /// March along each slice's 1D min/max binary tree (yusov2013): same result as without, fewer
   /// steps. Directional and spot lights with shadow maps up to 4096²; point lights and larger maps

@@ -12,7 +12,7 @@ constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr std::uint32_t kBindings = 14;
 // The march list's header: VkDispatchIndirectCommand, then the count (epipolar_common.glsl).
-constexpr VkDeviceSize kMarchHeaderWords = 4;
+constexpr VkDeviceSize kMarchHeaderWords = 8;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
@@ -36,6 +36,9 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   if (s.initialSampleStep < 1 || s.initialSampleStep > 4096) return invalid("epipolar.initialSampleStep must be in 1..4096");
   if (!(s.refinementThreshold > 0.0f && s.refinementThreshold <= 1.0f)) {
     return invalid("epipolar.refinementThreshold must be in (0, 1]");
+  }
+  if (!(s.intensityRefinementThreshold > 0.0f && s.intensityRefinementThreshold <= 1.0f)) {
+    return invalid("epipolar.intensityRefinementThreshold must be in (0, 1]");
   }
   if (s.maxTreeStep < 2 || s.maxTreeStep > 4096 || (s.maxTreeStep & (s.maxTreeStep - 1)) != 0) {
     return invalid("epipolar.maxTreeStep must be a power of two in 2..4096");
@@ -80,13 +83,14 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 11> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 12> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
       {&sliceUvPipeline_, shaders::slice_uv_comp()},
       {&treePipeline_, shaders::min_max_tree_comp()},
       {&marchArgsPipeline_, shaders::march_args_comp()},
+      {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
       {&marchPipeline_, shaders::march_comp()},
       {&interpolatePipeline_, shaders::interpolate_comp()},
       {&unwarpPipeline_, shaders::unwarp_comp()},
@@ -148,7 +152,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
-                              marchArgsPipeline_, marchPipeline_, marchLocalPipeline_, interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_,
+                              marchArgsPipeline_, refineIntensityPipeline_, marchPipeline_, marchLocalPipeline_, interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_,
                               fixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
@@ -322,16 +326,25 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
       pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
     }
   }
-  pass("epipolar_march_args", marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-  // One thread per listed sample, sized on the GPU.
-  timer.beginPass(gpu, cmd, "epipolar_march");
-  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                           light == LightType::Directional ? marchPipeline_ : marchLocalPipeline_);
-  gpu.vk.vkCmdDispatchIndirect(cmd, textures_.marchList.buffer, 0);
-  timer.endPass(gpu, cmd);
-  passes.emplace_back("epipolar_march");
+  // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
+  // refinement adds.
+  const VkPipeline march = light == LightType::Directional ? marchPipeline_ : marchLocalPipeline_;
+  auto marchRound = [&](const char* argsName, const char* name) {
+    pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+    timer.beginPass(gpu, cmd, name);
+    memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                  readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, march);
+    gpu.vk.vkCmdDispatchIndirect(cmd, textures_.marchList.buffer, 0);
+    timer.endPass(gpu, cmd);
+    passes.emplace_back(name);
+  };
+  marchRound("epipolar_march_args", "epipolar_march");
+  if (constants.refinement.y < 1.0f) {
+    pass("epipolar_refine_intensity", refineIntensityPipeline_,
+         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+    marchRound("epipolar_march_args_refined", "epipolar_march_refined");
+  }
   pass("epipolar_interpolate", interpolatePipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_unwarp", unwarpPipeline_, [&] {

@@ -74,6 +74,7 @@ class EpipolarTechnique {
   VkPipeline sliceUvPipeline_ = VK_NULL_HANDLE;
   VkPipeline treePipeline_ = VK_NULL_HANDLE;
   VkPipeline marchArgsPipeline_ = VK_NULL_HANDLE;
+  VkPipeline refineIntensityPipeline_ = VK_NULL_HANDLE;
   VkPipeline marchPipeline_ = VK_NULL_HANDLE;       // directional light
   VkPipeline marchLocalPipeline_ = VK_NULL_HANDLE;  // spot and point lights
   VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;

@@ -53,6 +53,7 @@ struct Worst {
   double filtering = 0.0;           // prefiltered reconstruction vs filtered reconstructions
   double projRowSpread = 0.0;       // projective: spread of v and depth along a view ray (float)
   double projLightSpread = 0.0;     // projective: spread of (u, v) along a light ray (float)
+  double projOffsetSpread = 0.0;    // projective, camera-relative form: spread along a view ray
 };
 Worst g_worst;
 
@@ -67,11 +68,11 @@ class SummaryPrinter : public ::testing::Environment {
         "%.1e / slack %.1e rel, row spread %.1e, light-ray spread %.1e, slice theta %.1e rad, weight "
         "sum %.1e rel, prefix average %.1e, inscattering %.1e rel, grey bound %.1e, fourier series "
         "%.1e, truncation at d=0.05/0.1/0.25: %.3f/%.3f/%.3f, gibbs %.4f of the jump, unorm8 %.4f, "
-        "filtering %.1e, projective row %.1e / light ray %.1e\n",
+        "filtering %.1e, projective row %.1e (camera-relative %.1e) / light ray %.1e\n",
         w.roundTripWorld, w.roundTripTexcoord, w.boundsOvershoot, w.boundsSlack, w.rowSpread,
         w.lightRaySpread, w.sliceTheta, w.weightSum, w.prefixAverage, w.inscattering, w.greyBound,
         w.fourierSeries, w.fourierAt[0], w.fourierAt[1], w.fourierAt[2], w.gibbs, w.quantised,
-        w.filtering, w.projRowSpread, w.projLightSpread);
+        w.filtering, w.projRowSpread, w.projOffsetSpread, w.projLightSpread);
   }
 };
 [[maybe_unused]] ::testing::Environment* const g_summary =
@@ -786,6 +787,12 @@ TEST(PrefixSums, GreyOrPerChannelExtinction) {
   EXPECT_GE(worst(e.sigma / 1.05), e.greyMaxError - 1e-6);
   // Two equal channels count once.
   EXPECT_EQ(choosePrefixSumExtinction(dvec3(0.1, 0.2, 0.1), 10.0).distinctChannels, 2);
+  const PrefixSumExtinction haze = choosePrefixSumExtinction(dvec3(1.0e-4, 1.2e-4, 1.5e-4), 200.0);
+  const PrefixSumExtinction thinRayleigh = choosePrefixSumExtinction(rayleigh, 0.5);
+  std::printf("[ Rectify ] grey extinction, worst visibility error: haze (1, 1.2, 1.5)e-4 over 200: %.4f; Rayleigh-like "
+              "(0.058, 0.135, 0.331) over 50: %.3f, over 0.5: %.4f (threshold %.2f)\n",
+              haze.greyMaxError, e.greyMaxError, thinRayleigh.greyMaxError, kGreyExtinctionMaxError);
+  EXPECT_FALSE(thinRayleigh.perChannel);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1008,6 +1015,20 @@ TEST(ProjectiveRectification, ViewRaysAreRowsOfConstantDepthAndLightRaysTexels) 
           EXPECT_NEAR(double(tyn_projective_x(pp, float(uvd.x))), x, (1e-5 + 2e-7 * proj.xFar / proj.xNear) * x) << what;
         }
         keepMax(g_worst.projRowSpread, spreadF);
+        // The camera-relative form keeps float precision all along the ray, and agrees with the
+        // world form where that one is precise.
+        const vec3 firstOffset = tyn_projective_texcoord_from_offset(pp, f3(tNear * d));
+        for (int k = 0; k <= 40; ++k) {
+          const double t = tNear * std::pow(tFar / tNear, k / 40.0);
+          const vec3 got = tyn_projective_texcoord_from_offset(pp, f3(t * d));
+          const dvec3 exact = projectiveTexcoordDouble(proj, c.position + t * d);
+          const double spread = std::max(std::abs(double(got.y - firstOffset.y)), std::abs(double(got.z - firstOffset.z)));
+          keepMax(g_worst.projOffsetSpread, spread);
+          EXPECT_LT(spread, 1e-6) << what;
+          EXPECT_NEAR(double(got.y), exact.y, 1e-6) << what;
+          EXPECT_NEAR(double(got.z), exact.z, 1e-6) << what;
+          EXPECT_NEAR(double(got.x), exact.x, 1e-6 + 2e-7 * proj.xFar / proj.xNear) << what;
+        }
         // The row's slice is the non-linear one: φ = atan η.
         const double phiExact = rectifiedDouble(rect, c.position + d).y;
         EXPECT_NEAR(double(tyn_projective_row_phi(pp, float(first.y))), phiExact, 1e-5) << what;

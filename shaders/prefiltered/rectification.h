@@ -28,6 +28,10 @@
 //   so every view ray's depth stays at least 0.05/1.1 inside (0, 1) — which the Fourier basis
 //   needs (see "Fourier basis"). Occluder depths outside [0, 1] are clamped (klehm2014 §4.1).
 //   The inverse (r, φ, θ) → p is undefined on the light ray through the camera (r = 0).
+// - Precision: a float world position far from the origin carries ~6e-8 of its magnitude as
+//   error, which near the camera is a large error in direction. Per-pixel passes should use the
+//   forms that take the view ray (tyn_rectified_from_view_ray, tyn_projective_texcoord_from_offset);
+//   a ray's row and depth then come from its direction alone and are exactly constant.
 // - Projective rectification (klehm2014 §4.2): one world → clip matrix, a perspective projection
 //   ALONG x_L with the camera as its centre. With η = y/x and ζ = h/x:
 //     clip.w = x;  column NDC = (x_f + x_n)/(x_f − x_n) − 2·x_f·x_n/((x_f − x_n)·x) ∈ [−1, 1];
@@ -344,6 +348,18 @@ TYN_FUNC float tyn_fourier_visibility(float z_ray, vec4 filtered[TYN_FOURIER_LAY
 // comment). Valid for points with x > 0 (in particular the whole frustum beyond the camera).
 TYN_FUNC vec3 tyn_projective_texcoord(ProjectiveRectificationParams proj, vec3 world) {
   vec4 clip = proj.world_to_clip * vec4(world, 1.0f);
+  return vec3(clip.x / clip.w * 0.5f + 0.5f, clip.y / clip.w * 0.5f + 0.5f, clip.z / clip.w);
+}
+
+// The same from the camera-relative offset p − o (t·d along a view ray). world_to_clip maps o to
+// (B, 0, 0, 0), B = −2·x_f·x_n/(x_f − x_n) (the light view takes o to the origin, the projection
+// keeps only its translation column), so clip = M·(offset, 0) + (B, 0, 0, 0): no cancellation
+// against the camera's world position, which costs a float world position its precision near a
+// camera far from the origin. Prefer it in per-pixel passes.
+TYN_FUNC vec3 tyn_projective_texcoord_from_offset(ProjectiveRectificationParams proj, vec3 offset) {
+  float xn = proj.x_eta.x;
+  float xf = proj.x_eta.y;
+  vec4 clip = proj.world_to_clip * vec4(offset, 0.0f) + vec4(-2.0f * xf * xn / (xf - xn), 0.0f, 0.0f, 0.0f);
   return vec3(clip.x / clip.w * 0.5f + 0.5f, clip.y / clip.w * 0.5f + 0.5f, clip.z / clip.w);
 }
 

@@ -38,6 +38,7 @@ struct FrameSlot {
   vk::Image color;
   vk::Image aovScattering;
   vk::Image aovTransmittance;
+  vk::Image aovDebug;
 };
 
 std::uint32_t bytesPerPixel(VkFormat format) {
@@ -304,7 +305,8 @@ bool Renderer::Impl::createSizeDependent(std::string& error) {
     }
     if (settings.aovImages) {
       if (!slot.aovScattering.create(gpu, {detail::kAovFormat, extent, aovUsage, "AOV scattering"}, error) ||
-          !slot.aovTransmittance.create(gpu, {detail::kAovFormat, extent, aovUsage, "AOV transmittance"}, error)) {
+          !slot.aovTransmittance.create(gpu, {detail::kAovFormat, extent, aovUsage, "AOV transmittance"}, error) ||
+          !slot.aovDebug.create(gpu, {detail::kAovFormat, extent, aovUsage, "AOV debug view"}, error)) {
         return false;
       }
     }
@@ -392,7 +394,8 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
       .image(slot.color.image(), kColorAspect, kUndefined, kColorLayout, previousUse, colorAttachment);
   if (settings.aovImages) {
     barriers.image(slot.aovScattering.image(), kColorAspect, kUndefined, kAovLayout, previousUse, clearWrite)
-        .image(slot.aovTransmittance.image(), kColorAspect, kUndefined, kAovLayout, previousUse, clearWrite);
+        .image(slot.aovTransmittance.image(), kColorAspect, kUndefined, kAovLayout, previousUse, clearWrite)
+        .image(slot.aovDebug.image(), kColorAspect, kUndefined, kAovLayout, previousUse, clearWrite);
   }
   barriers.record(cmd);
 
@@ -403,6 +406,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
     const VkClearColorValue one{{1.0f, 1.0f, 1.0f, 1.0f}};
     vkCmdClearColorImage(cmd, slot.aovScattering.image(), kAovLayout, &zero, 1, &range);
     vkCmdClearColorImage(cmd, slot.aovTransmittance.image(), kAovLayout, &one, 1, &range);
+    vkCmdClearColorImage(cmd, slot.aovDebug.image(), kAovLayout, &zero, 1, &range);
   }
 
   for (std::size_t i = 0; i < slot.shadowMaps.size(); ++i) {
@@ -537,6 +541,7 @@ bool Renderer::renderFrame(std::string& error) {
   if (r.settings.aovImages) {
     inputs.aovScattering = hostImage(slot.aovScattering, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     inputs.aovTransmittance = hostImage(slot.aovTransmittance, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    inputs.aovDebug = hostImage(slot.aovDebug, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
   }
   for (std::size_t i = 0; i < r.effects.size(); ++i) {
     std::string effectError;
@@ -622,6 +627,14 @@ bool Renderer::readAovTransmittance(ImageRgba32f& out, std::string& error) {
   }
   return impl_->readImage(impl_->slots[*impl_->lastSlot].aovTransmittance, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                           out, error);
+}
+
+bool Renderer::readAovDebug(ImageRgba32f& out, std::string& error) {
+  if (!impl_->settings.aovImages || !impl_->lastSlot) {
+    error = "readAovDebug: needs RenderSettings::aovImages and a rendered frame";
+    return false;
+  }
+  return impl_->readImage(impl_->slots[*impl_->lastSlot].aovDebug, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, out, error);
 }
 
 const RenderSettings& Renderer::settings() const { return impl_->settings; }

@@ -104,6 +104,7 @@ struct Context::Impl {
   // Size-dependent.
   OwnedImage scattering;
   OwnedImage transmittance;
+  OwnedImage debugImage;  // created at the first frame that draws a debug view
   Stats stats;
 
   void report(Severity severity, const std::string& message) const {
@@ -162,6 +163,7 @@ Outcome Context::Impl::createSizeDependent() {
 }
 
 void Context::Impl::destroySizeDependent() {
+  destroyImage(gpu, debugImage);
   destroyImage(gpu, transmittance);
   destroyImage(gpu, scattering);
 }
@@ -299,6 +301,16 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     technique = Technique::Reference;
     note += "; output smaller than 2x2: Reference instead of epipolar";
   }
+  const bool drawsDebugView = frame.debugView != DebugView::None && technique == Technique::Epipolar;
+  if (frame.debugView != DebugView::None && !drawsDebugView) note += "; debug view: drawn by the epipolar technique only";
+  if (drawsDebugView && debugImage.image == VK_NULL_HANDLE) {
+    if (Outcome o = createImage(gpu, kTargetFormat, extent, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                debugImage);
+        !o) {
+      return fail(o);
+    }
+    report(Severity::Info, "debug view image allocated");
+  }
   gpu::EpipolarConstants epipolarK{};
   if (technique == Technique::Epipolar) {
     epipolarK = epipolarConstants(frame, epipolarSettings);
@@ -379,6 +391,13 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     acquireDepth(map, bindings.shadowLayouts[i]);
   }
 
+  if (frame.debugView != DebugView::None && !bruteForce) {
+    bindings.debug = debugImage.view;
+    bindings.debugView = frame.debugView;
+    imageBarrier(gpu, cmd, debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                 {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_TRANSFER_BIT, 0},
+                 {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
+  }
   if (bruteForce) {
     reference.record(gpu, cmd, slot, bindings, extent);
     timer.endPass(gpu, cmd);
@@ -419,7 +438,7 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool
       {&frame.scatteringOutput, &scattering},
       {&frame.transmittanceOutput, &transmittance},
   }};
-  if (frame.scatteringOutput.empty() && frame.transmittanceOutput.empty()) return;
+  if (frame.scatteringOutput.empty() && frame.transmittanceOutput.empty() && frame.debugOutput.empty()) return;
 
   const char* pass = fromTargets ? "aov_output" : "aov_clear";
   timer.beginPass(gpu, cmd, pass);
@@ -450,6 +469,33 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool
     }
     imageBarrier(gpu, cmd, output->image, VK_IMAGE_ASPECT_COLOR_BIT, output->arrayLayer, transferWrite,
                  hostAfter(*output));
+  }
+  if (!frame.debugOutput.empty()) {
+    // The debug view, when one was drawn (GENERAL, written by compute); otherwise black.
+    const bool drawn = fromTargets && frame.debugView != DebugView::None && stats.technique == Technique::Epipolar;
+    const ImageRef& output = frame.debugOutput;
+    const VkImageLayout layout = keepGeneral(output.layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const ImageUse transferWrite{layout, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
+    imageBarrier(gpu, cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, output.arrayLayer, hostBefore(output),
+                 transferWrite);
+    if (drawn) {
+      imageBarrier(gpu, cmd, debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                   {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
+                   {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
+      VkImageBlit region{};
+      region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+      region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
+      region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, output.arrayLayer, 1};
+      region.dstOffsets[1] = region.srcOffsets[1];
+      gpu.vk.vkCmdBlitImage(cmd, debugImage.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output.image, layout, 1,
+                            &region, VK_FILTER_NEAREST);
+    } else {
+      const VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
+      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, output.arrayLayer, 1};
+      gpu.vk.vkCmdClearColorImage(cmd, output.image, layout, &black, 1, &range);
+    }
+    imageBarrier(gpu, cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, output.arrayLayer, transferWrite,
+                 hostAfter(output));
   }
   timer.endPass(gpu, cmd);
   stats.passesRecorded.emplace_back(pass);

@@ -179,6 +179,13 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   }
   if (Outcome o = checkOutputImage(gpu, frame.scatteringOutput, outputExtent, "scatteringOutput"); !o) return o;
   if (Outcome o = checkOutputImage(gpu, frame.transmittanceOutput, outputExtent, "transmittanceOutput"); !o) return o;
+  if (static_cast<std::uint32_t>(frame.debugView) > static_cast<std::uint32_t>(DebugView::FixedUpPixels)) {
+    return invalid("debugView is not a DebugView");
+  }
+  if (frame.debugView != DebugView::None && frame.debugOutput.empty()) {
+    return invalid("debugView needs a debugOutput image");
+  }
+  if (Outcome o = checkOutputImage(gpu, frame.debugOutput, outputExtent, "debugOutput"); !o) return o;
   if (!frame.lightColor.empty()) {
     return failure(Status::UnsupportedFeature, "lightColor: no technique supports a light-colour texture yet");
   }

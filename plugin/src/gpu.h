@@ -95,6 +95,9 @@ struct ScatteringBindings {
   std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
   VkImageView scattering = VK_NULL_HANDLE;
   VkImageView transmittance = VK_NULL_HANDLE;
+  /// The debug view's target (storage, GENERAL) when the frame asks for one, else null.
+  VkImageView debug = VK_NULL_HANDLE;
+  DebugView debugView = DebugView::None;
 };
 
 /// Descriptors of the shadow-map array; unused elements repeat map 0, because every element

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -105,7 +106,7 @@ std::string usage() {
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
-         "         [--epipolar KEY=VALUE[,KEY=VALUE...]]\n"
+         "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--debug-view samples|fixup FILE.png]\n"
          "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
          "    slices, samples, initial-step, refinement, intensity-refinement, density, improved-placement (0|1),\n"
          "    tree (0|1),"
@@ -185,6 +186,17 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       EpipolarSettings settings;
       if (!parseEpipolarSettings(v, settings, error)) return false;
       options.epipolar = settings;
+    } else if (arg == "--debug-view") {
+      if (!value(v)) return false;
+      if (v == "samples") {
+        options.debugView = DebugView::EpipolarSamples;
+      } else if (v == "fixup") {
+        options.debugView = DebugView::FixedUpPixels;
+      } else {
+        error = "--debug-view must be one of: samples, fixup (got '" + v + "')";
+        return false;
+      }
+      if (!value(options.debugViewPng)) return false;
     } else if (arg == "--no-effect") {
       options.noEffect = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -206,7 +218,8 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
 
 bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
                  RenderResult& result, std::string& error) {
-  const bool aovs = wantAovs || !options.aovScattering.empty() || !options.aovTransmittance.empty();
+  const bool aovs = wantAovs || !options.aovScattering.empty() || !options.aovTransmittance.empty() ||
+                    options.debugView != DebugView::None;
   host::RenderSettings settings;
   settings.width = options.width;
   settings.height = options.height;
@@ -225,6 +238,7 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
     if (!effect) return false;
     effect->setTechnique(options.technique);
     effect->setEpipolarSettings(options.epipolar);
+    effect->setDebugView(options.debugView);
     renderer->addPostProcess(effect.get());
   }
 
@@ -255,6 +269,7 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
     if (!renderer->readAovScattering(result.scattering, error)) return false;
     if (!renderer->readAovTransmittance(result.transmittance, error)) return false;
   }
+  if (options.debugView != DebugView::None && !renderer->readAovDebug(result.debugView, error)) return false;
   return true;
 }
 
@@ -324,7 +339,7 @@ void makeParent(const std::string& path) {
 
 bool writeOutputs(const RenderOptions& options, const RenderResult& result, std::string& error) {
   for (const std::string* path : {&options.outputPng, &options.outputExr, &options.aovScattering,
-                                  &options.aovTransmittance, &options.timings}) {
+                                  &options.aovTransmittance, &options.timings, &options.debugViewPng}) {
     if (!path->empty()) makeParent(*path);
   }
   if (!options.outputPng.empty()) {
@@ -336,6 +351,15 @@ bool writeOutputs(const RenderOptions& options, const RenderResult& result, std:
   if (!options.aovScattering.empty() && !host::writeExr(options.aovScattering, result.scattering, error)) return false;
   if (!options.aovTransmittance.empty() && !host::writeExr(options.aovTransmittance, result.transmittance, error)) {
     return false;
+  }
+  if (!options.debugViewPng.empty()) {
+    // A false-colour chart, not a picture: its values go to 8 bits as they are.
+    const host::ImageRgba32f& view = result.debugView;
+    std::vector<std::uint8_t> rgba8(view.pixels.size());
+    for (std::size_t i = 0; i < rgba8.size(); ++i) {
+      rgba8[i] = static_cast<std::uint8_t>(std::lround(std::clamp(view.pixels[i], 0.0f, 1.0f) * 255.0f));
+    }
+    if (!host::writePng(options.debugViewPng, view.width, view.height, rgba8, error)) return false;
   }
   if (!options.timings.empty() && !writeText(options.timings, timingsJson(options, result), error)) return false;
   return true;

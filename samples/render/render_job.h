@@ -32,6 +32,8 @@ struct RenderOptions {
   bool infiniteFar = false;
   bool validation = false;
   bool noEffect = false;  ///< render without Tyndall: the host's own cost, for wall-clock baselines
+  DebugView debugView = DebugView::None;  ///< --debug-view samples|fixup FILE.png
+  std::string debugViewPng;
   VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  ///< not on the command line
   std::uint32_t framesInFlight = 2;                           ///< not on the command line
 };
@@ -44,6 +46,7 @@ struct RenderResult {
   host::ImageRgba32f color;          ///< back buffer after the post-process stack (scene-linear)
   host::ImageRgba32f scattering;     ///< L_in (only if requested by the options)
   host::ImageRgba32f transmittance;  ///< T (only if requested by the options)
+  host::ImageRgba32f debugView;      ///< the debug view (only if the options name one)
   Stats stats;                       ///< after the last frame
   std::vector<FrameTimings> timings; ///< every frame whose timestamps were read
   /// Wall-clock milliseconds per frame, host passes included, over frames 2..N (frame 1 when

@@ -134,6 +134,10 @@ bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& i
   FrameDesc frame = makeFrameDesc(inputs, profile_, storage);
   frame.technique = technique_;
   if (epipolar_) frame.epipolar = &*epipolar_;
+  if (debugView_ != DebugView::None) {
+    frame.debugView = debugView_;
+    frame.debugOutput = toImageRef(inputs.aovDebug);
+  }
   if (Outcome outcome = context_->record(cmd, frame); !outcome) {
     error = std::string("tyndall: ") + to_string(outcome.status) + ": " + outcome.message;
     return false;

@@ -46,6 +46,9 @@ layout(set = 0, binding = 13, std430) buffer MarchList {
   uint march_samples[];
 };
 
+// The debug view (DebugView), bound only for the debug passes.
+layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D debug_image;
+
 layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar; };
 
 #include "common/view_ray.glsl"

@@ -60,7 +60,7 @@ struct RenderSettings {
   /// Colour attachment with blending and a readback path: R16G16B16A16_SFLOAT, R32G32B32A32_SFLOAT,
   /// R8G8B8A8/B8G8R8A8 UNORM or SRGB, A2B10G10R10_UNORM_PACK32.
   VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
-  bool aovImages = false;           ///< allocate the two RGBA32F AOV images handed to effects
+  bool aovImages = false;           ///< allocate the RGBA32F AOV images handed to effects (L_in, T, debug view)
 };
 
 /// An image of the host as a post-process sees it (mirrors tyndall::ImageRef).
@@ -93,6 +93,7 @@ struct PostProcessInputs {
   HostImage color;                   ///< back buffer, COLOR_ATTACHMENT_OPTIMAL
   HostImage aovScattering;           ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
   HostImage aovTransmittance;        ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
+  HostImage aovDebug;                ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages (cleared to 0)
 };
 
 /// A pass of the post-process stack, inserted exactly as an engine would insert one.
@@ -135,6 +136,7 @@ class Renderer {
   bool readBackBuffer(ImageRgba32f& out, std::string& error);
   bool readAovScattering(ImageRgba32f& out, std::string& error);
   bool readAovTransmittance(ImageRgba32f& out, std::string& error);
+  bool readAovDebug(ImageRgba32f& out, std::string& error);
 
   const RenderSettings& settings() const;
   glm::mat4 viewMatrix() const;

@@ -105,6 +105,14 @@ struct EpipolarSettings {
   float epipoleFixupRadius = 8.0f;
 };
 
+/// A picture of how the technique sampled the frame, for people tuning it (tyndall-render
+/// --debug-view). Drawn over a dimmed grey L_in (luminance / (1 + luminance), times 0.4).
+enum class DebugView : std::uint32_t {
+  None,
+  EpipolarSamples,  ///< the ray-marched epipolar samples, yellow, at the pixel each lies in
+  FixedUpPixels,    ///< the pixels the epipolar fix-up pass ray-marched, red
+};
+
 const char* to_string(Profile profile) noexcept;
 const char* to_string(Technique technique) noexcept;
 
@@ -231,6 +239,11 @@ struct FrameDesc {
   ImageRef scatteringOutput;
   /// Optional AOV: receives the view-ray transmittance exp(−σ_t s). Same requirements.
   ImageRef transmittanceOutput;
+  /// Optional debug view (DebugView): written to `debugOutput`, which has the AOVs' requirements.
+  /// Only the epipolar technique draws one; otherwise the image receives the dimmed L_in alone and
+  /// `Stats::techniqueNote` says so. The debug image is allocated at its first use.
+  DebugView debugView = DebugView::None;
+  ImageRef debugOutput;
   /// Optional light-colour texture (stained glass). No technique supports it yet: a frame that
   /// sets it is rejected with UnsupportedFeature.
   ImageRef lightColor;

@@ -10,7 +10,7 @@ namespace {
 
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
-constexpr std::uint32_t kBindings = 14;
+constexpr std::uint32_t kBindings = 15;
 // The march list's header: VkDispatchIndirectCommand, then the count (epipolar_common.glsl).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
@@ -67,6 +67,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
       {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = kBindings;
@@ -83,7 +84,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 12> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 15> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
@@ -96,6 +97,9 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
       {&unwarpPipeline_, shaders::unwarp_comp()},
       {&fixupArgsPipeline_, shaders::fixup_args_comp()},
       {&fixupPipeline_, shaders::fixup_comp()},
+      {&debugBackgroundPipeline_, shaders::debug_background_comp()},
+      {&debugSamplesPipeline_, shaders::debug_samples_comp()},
+      {&debugFixupPipeline_, shaders::debug_fixup_comp()},
   }};
   for (const auto& [pipeline, spirv] : pipelines) {
     if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
@@ -112,7 +116,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 9},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
   }};
   sets_.resize(slots);
@@ -153,7 +157,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
                               marchArgsPipeline_, refineIntensityPipeline_, marchPipeline_, marchLocalPipeline_, interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_,
-                              fixupPipeline_}) {
+                              fixupPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_, debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
   if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
@@ -274,7 +278,11 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   write(11, 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &sliceUv;
   write(12, 12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &tree;
   write(13, 13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &marchList;
-  gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+  // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
+  const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};
+  std::uint32_t count = kBindings - 1;
+  if (b.debug != VK_NULL_HANDLE) write(count++, 14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &debug;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, count, writes.data(), 0, nullptr);
 }
 
 void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
@@ -361,6 +369,19 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
   timer.endPass(gpu, cmd);
   passes.emplace_back("epipolar_fixup");
+
+  if (bindings.debugView != DebugView::None) {
+    pass("epipolar_debug_background", debugBackgroundPipeline_, [&] {
+      gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
+                           groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
+    });
+    if (bindings.debugView == DebugView::EpipolarSamples) {
+      pass("epipolar_debug_samples", debugSamplesPipeline_,
+           [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+    } else {
+      pass("epipolar_debug_fixup", debugFixupPipeline_, [&] { gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0); });
+    }
+  }
 
   // The counts go to the slot's readback buffer, read when the slot comes round again.
   memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,

@@ -81,6 +81,9 @@ class EpipolarTechnique {
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupPipeline_ = VK_NULL_HANDLE;
+  VkPipeline debugBackgroundPipeline_ = VK_NULL_HANDLE;
+  VkPipeline debugSamplesPipeline_ = VK_NULL_HANDLE;
+  VkPipeline debugFixupPipeline_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
   std::vector<MappedBuffer> fixupReadback_;  // per slot: fix-up and marched counts, read a lap later

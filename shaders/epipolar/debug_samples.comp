@@ -1,0 +1,18 @@
+#version 460
+// Debug view DebugView::EpipolarSamples: every ray-marched epipolar sample (an interpolation
+// source of itself), yellow, at the pixel it lies in.
+#extension GL_GOOGLE_include_directive : require
+#include "epipolar/epipolar_common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main() {
+  uvec2 id = gl_GlobalInvocationID.xy;  // x: sample, y: slice
+  if (id.x >= epipolar.counts.y || id.y >= epipolar.counts.x) return;
+  uint source = imageLoad(interpolation_source, ivec2(id)).x;
+  if (source == TYN_EPIPOLAR_NO_SOURCE || (source & 0xffffu) != id.x) return;
+  vec2 extent = tyn_output_extent();
+  vec2 ndc = imageLoad(epipolar_coordinates, ivec2(id)).xy;
+  ivec2 pixel = ivec2(clamp(floor(tyn_pixel_from_ndc(ndc, extent)), vec2(0.0), extent - 1.0));
+  imageStore(debug_image, pixel, vec4(1.0, 0.85, 0.0, 1.0));
+}

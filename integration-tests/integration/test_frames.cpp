@@ -163,8 +163,8 @@ TEST(Profiles, EveryProfileRunsAndSaysWhichTechnique) {
     options.profile = profile;
     const samples::RenderResult result = renderWithAovs(scene, options);
     EXPECT_EQ(result.stats.requestedProfile, profile);
-    EXPECT_EQ(result.stats.technique, Technique::Reference);
-    EXPECT_NE(result.stats.techniqueNote.find(profile == Profile::Reference ? "brute force" : "Reference"),
+    EXPECT_EQ(result.stats.technique, profile == Profile::Reference ? Technique::Reference : Technique::Epipolar);
+    EXPECT_NE(result.stats.techniqueNote.find(profile == Profile::Reference ? "brute force" : "epipolar"),
               std::string::npos)
         << result.stats.techniqueNote;
   }

@@ -11,6 +11,8 @@ layout(set = 0, binding = 1) uniform sampler2D gDepth;
 layout(set = 0, binding = 2) uniform sampler2D gAlbedo;
 layout(set = 0, binding = 3) uniform sampler2D gNormal;
 layout(set = 0, binding = 4) uniform sampler2DShadow shadowMaps[kHostMaxShadowMaps];
+// The light's colour texture over shadow map 0's square (stained glass); 1×1 white without one.
+layout(set = 0, binding = 5) uniform sampler2D lightColor;
 
 layout(location = 0) out vec4 outColor;
 
@@ -83,6 +85,17 @@ float host_shadow(vec3 world, vec3 n, vec3 toLight) {
   return host_sample_shadow(map, vec3(ndc.xy * 0.5 + 0.5, ndc.z));
 }
 
+// The light's colour filter at a point (Tyndall's FrameDesc::lightColor contract: shadow map 0's
+// UV square, bilinear, unfiltered outside it). A point light has none (white texel).
+vec3 host_light_color(vec3 world) {
+  if (params.mode.x == kHostLightPoint) return vec3(1.0);
+  vec4 clip = params.worldToShadowClip[0] * vec4(world, 1.0);
+  if (clip.w <= 0.0) return vec3(1.0);
+  vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+  if (any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return vec3(1.0);
+  return textureLod(lightColor, uv, 0.0).rgb;
+}
+
 void main() {
   const ivec2 px = ivec2(gl_FragCoord.xy);
   const float depth = texelFetch(gDepth, px, 0).r;
@@ -118,7 +131,7 @@ void main() {
   vec3 light = params.ambient.rgb;
   const float nDotL = dot(n, toLight);
   if (nDotL > 0.0 && any(greaterThan(irradiance, vec3(0.0)))) {
-    light += irradiance * nDotL * host_shadow(world, n, toLight);
+    light += irradiance * host_light_color(world) * nDotL * host_shadow(world, n, toLight);
   }
   outColor = vec4(albedo * light, 1.0);
 }

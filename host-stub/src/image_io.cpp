@@ -1,4 +1,4 @@
-// PNG (stb_image_write) and EXR (OpenEXR) files. Writers go through `path + ".tmp"` and a rename,
+// PNG (stb_image_write, stb_image) and EXR (OpenEXR) files. Writers go through `path + ".tmp"` and a rename,
 // so a reader never sees a half-written file and a failed write leaves no file behind.
 #include <filesystem>
 #include <system_error>
@@ -9,9 +9,12 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 
-// The one translation unit that compiles stb_image_write.
+// The one translation unit that compiles stb_image_write and stb_image (PNG only).
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#include <stb/stb_image.h>
 
 #include "tyndall_host/renderer.h"
 
@@ -37,6 +40,21 @@ void removeQuietly(const std::string& path) {
 }
 
 }  // namespace
+
+bool readPng(const std::string& path, std::uint32_t& width, std::uint32_t& height, std::vector<std::uint8_t>& rgba8,
+             std::string& error) {
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &channels, 4);
+  if (pixels == nullptr) {
+    error = "readPng(" + path + "): " + (stbi_failure_reason() != nullptr ? stbi_failure_reason() : "unreadable");
+    return false;
+  }
+  width = static_cast<std::uint32_t>(w);
+  height = static_cast<std::uint32_t>(h);
+  rgba8.assign(pixels, pixels + static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4);
+  stbi_image_free(pixels);
+  return true;
+}
 
 bool writePng(const std::string& path, std::uint32_t width, std::uint32_t height,
               const std::vector<std::uint8_t>& rgba8, std::string& error) {

@@ -11,6 +11,7 @@ constexpr std::uint32_t kDepthBinding = 1;
 constexpr std::uint32_t kAlbedoBinding = 2;
 constexpr std::uint32_t kNormalBinding = 3;
 constexpr std::uint32_t kShadowBinding = 4;
+constexpr std::uint32_t kLightColorBinding = 5;
 constexpr auto kShadowCount = static_cast<std::uint32_t>(gpu::kHostMaxShadowMaps);
 
 }  // namespace
@@ -47,6 +48,14 @@ bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::
     return false;
   shadowSampler_ = vk::UniqueSampler(device_, sampler);
 
+  // The light's colour texture: bilinear, clamped to its edge (as Tyndall samples it).
+  VkSamplerCreateInfo linearInfo = pointInfo;
+  linearInfo.magFilter = VK_FILTER_LINEAR;
+  linearInfo.minFilter = VK_FILTER_LINEAR;
+  if (!vk::check(vkCreateSampler(device_, &linearInfo, nullptr, &sampler), "vkCreateSampler", error))
+    return false;
+  linearSampler_ = vk::UniqueSampler(device_, sampler);
+
   const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
   const VkDescriptorSetLayoutBinding bindings[] = {
       {kParamsBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fragment, nullptr},
@@ -54,9 +63,10 @@ bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::
       {kAlbedoBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, nullptr},
       {kNormalBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, nullptr},
       {kShadowBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kShadowCount, fragment, nullptr},
+      {kLightColorBinding, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, nullptr},
   };
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setInfo.bindingCount = 5;
+  setInfo.bindingCount = 6;
   setInfo.pBindings = bindings;
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   if (!vk::check(vkCreateDescriptorSetLayout(device_, &setInfo, nullptr, &setLayout),
@@ -67,7 +77,7 @@ bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::
 
   const VkDescriptorPoolSize sizes[] = {
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slotCount},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slotCount * (3 + kShadowCount)},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slotCount * (4 + kShadowCount)},
   };
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = slotCount;
@@ -119,7 +129,9 @@ void LightingPass::bindSlot(std::uint32_t slot, const SlotInputs& inputs) {
     shadows[i] = {shadowSampler_.get(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   }
 
-  VkWriteDescriptorSet writes[5]{};
+  const VkDescriptorImageInfo lightColor{linearSampler_.get(), inputs.lightColor,
+                                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet writes[6]{};
   for (VkWriteDescriptorSet& write : writes) {
     write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     write.dstSet = sets_[slot];
@@ -138,7 +150,9 @@ void LightingPass::bindSlot(std::uint32_t slot, const SlotInputs& inputs) {
   writes[4].dstBinding = kShadowBinding;
   writes[4].descriptorCount = kShadowCount;
   writes[4].pImageInfo = shadows;
-  vkUpdateDescriptorSets(device_, 5, writes, 0, nullptr);
+  writes[5].dstBinding = kLightColorBinding;
+  writes[5].pImageInfo = &lightColor;
+  vkUpdateDescriptorSets(device_, 6, writes, 0, nullptr);
 }
 
 void LightingPass::record(VkCommandBuffer cmd, std::uint32_t slot, const vk::Image& target) const {

@@ -130,6 +130,7 @@ class LightingPass {
     VkImageView albedo = VK_NULL_HANDLE;
     VkImageView normal = VK_NULL_HANDLE;
     std::vector<VkImageView> shadowMaps;  // 1 or 6
+    VkImageView lightColor = VK_NULL_HANDLE;  // the light's colour texture (1×1 white without one)
   };
 
   bool create(const vk::GpuContext& gpu, VkFormat colorFormat, std::uint32_t slotCount,
@@ -143,6 +144,7 @@ class LightingPass {
   VkDevice device_ = VK_NULL_HANDLE;
   vk::UniqueSampler pointSampler_;
   vk::UniqueSampler shadowSampler_;
+  vk::UniqueSampler linearSampler_;
   vk::UniqueDescriptorSetLayout setLayout_;
   vk::UniqueDescriptorPool pool_;
   std::vector<VkDescriptorSet> sets_;  // freed with the pool

@@ -147,6 +147,7 @@ struct Renderer::Impl {
   detail::ShadowPass shadowPass;
   detail::GBufferPass gbufferPass;
   detail::LightingPass lightingPass;
+  vk::Image lightColor;  // the light's colour texture (R8G8B8A8_SRGB), or 1×1 white without one
   CameraSetup camera;
   ShadowViews shadowViews;
   std::vector<FrameSlot> slots;
@@ -172,7 +173,46 @@ struct Renderer::Impl {
   bool waitSlot(FrameSlot& slot, std::string& error);
   bool waitAll(std::string& error);
   bool readImage(const vk::Image& image, VkImageLayout layout, ImageRgba32f& out, std::string& error);
+  bool createLightColor(std::string& error);
 };
+
+// Uploads the light's colour texture once (a white texel when it has none, so the lighting pass
+// always has one to sample), SHADER_READ_ONLY_OPTIMAL from then on.
+bool Renderer::Impl::createLightColor(std::string& error) {
+  std::uint32_t width = 1, height = 1;
+  std::vector<std::uint8_t> rgba8{255, 255, 255, 255};
+  if (!scene.light.colorTexture.empty() && !readPng(scene.light.colorTexture.string(), width, height, rgba8, error)) {
+    return false;
+  }
+  if (!lightColor.create(gpu, {VK_FORMAT_R8G8B8A8_SRGB, {width, height},
+                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, "light colour"},
+                         error)) {
+    return false;
+  }
+  vk::Buffer staging;
+  if (!staging.create(gpu, rgba8.size(), VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, error)) {
+    return false;
+  }
+  std::memcpy(staging.mapped(), rgba8.data(), rgba8.size());
+  return vk::submitAndWait(gpu, pool.get(), [&](VkCommandBuffer cmd) {
+    const vk::Barriers::Scope copyWrite{VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
+    vk::Barriers()
+        .image(lightColor.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+               VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, {VK_PIPELINE_STAGE_2_NONE, VK_ACCESS_2_NONE}, copyWrite)
+        .record(cmd);
+    VkBufferImageCopy region{};
+    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageExtent = {width, height, 1};
+    vkCmdCopyBufferToImage(cmd, staging.buffer(), lightColor.image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                           &region);
+    vk::Barriers()
+        .image(lightColor.image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+               VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, copyWrite,
+               {VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT})
+        .record(cmd);
+  }, error);
+}
 
 bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn, std::string& error) {
   scene = sceneIn;
@@ -212,6 +252,7 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
 
   // The shadow frusta are fitted to the geometry: build it first.
   if (!detail::buildSceneGeometry(gpu, pool.get(), scene, geometry, error) || !updateViews(error)) return false;
+  if (!createLightColor(error)) return false;
   if (!shadowPass.create(gpu, error) || !gbufferPass.create(gpu, camera.depthCompare, error) ||
       !lightingPass.create(gpu, settings.backBufferFormat, settings.framesInFlight, error)) {
     return false;
@@ -316,6 +357,7 @@ bool Renderer::Impl::createSizeDependent(std::string& error) {
     inputs.albedo = slot.albedo.view();
     inputs.normal = slot.normal.view();
     for (const vk::Image& map : slot.shadowMaps) inputs.shadowMaps.push_back(map.view());
+    inputs.lightColor = lightColor.view();
     lightingPass.bindSlot(i, inputs);
   }
   return true;
@@ -538,6 +580,9 @@ bool Renderer::renderFrame(std::string& error) {
   }
   inputs.depth = hostImage(slot.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
   inputs.color = hostImage(slot.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  if (!r.scene.light.colorTexture.empty()) {
+    inputs.lightColor = hostImage(r.lightColor, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  }
   if (r.settings.aovImages) {
     inputs.aovScattering = hostImage(slot.aovScattering, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     inputs.aovTransmittance = hostImage(slot.aovTransmittance, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);

@@ -190,17 +190,17 @@ void parseCone(const Json& json, const std::string& path, Light& light) {
   }
 }
 
-Light parseLight(const Json& json) {
+Light parseLight(const Json& json, const std::filesystem::path& baseDir) {
   const std::string path = "light";
   requireObject(json, path);
   Light light;
   light.type = parseLightType(json, path);
   if (light.type == LightType::Directional) {
-    requireKnownKeys(json, path, {"type", "direction", "color", "intensity"});
+    requireKnownKeys(json, path, {"type", "direction", "color", "intensity", "colorTexture"});
     light.direction = readDirection(json, path, "direction");
   } else {
     requireKnownKeys(json, path, {"type", "position", "direction", "color", "intensity",
-                                  "innerConeDegrees", "outerConeDegrees"});
+                                  "innerConeDegrees", "outerConeDegrees", "colorTexture"});
     light.position = readVec3(json, path, "position");
     // A point light shines everywhere: its direction only orients the six shadow frusta.
     const bool needsDirection = light.type == LightType::Spot || findMember(json, "direction") != nullptr;
@@ -211,6 +211,17 @@ Light parseLight(const Json& json) {
   requireNonNegative(light.color, child(path, "color"));
   light.intensity = readNumber(json, path, "intensity");
   requireNonNegative(light.intensity, child(path, "intensity"));
+  if (const Json* texture = findMember(json, "colorTexture")) {
+    const std::string texturePath = child(path, "colorTexture");
+    if (light.type == LightType::Point) fail(texturePath, "needs a directional or spot light");
+    const std::filesystem::path file = toString(*texture, texturePath);
+    if (file.empty()) fail(texturePath, "must not be empty");
+    light.colorTexture = (file.is_relative() ? baseDir / file : file).lexically_normal();
+    std::error_code status;
+    if (!std::filesystem::is_regular_file(light.colorTexture, status)) {
+      fail(texturePath, "names no readable file ('" + light.colorTexture.string() + "')");
+    }
+  }
   return light;
 }
 
@@ -365,7 +376,7 @@ Scene parseSceneJson(const Json& json, const std::filesystem::path& baseDir) {
   if (const Json* description = findMember(json, "description")) toString(*description, "description");
   Scene scene;
   scene.camera = parseCamera(requireMember(json, "", "camera"));
-  scene.light = parseLight(requireMember(json, "", "light"));
+  scene.light = parseLight(requireMember(json, "", "light"), baseDir);
   scene.medium = parseMedium(requireMember(json, "", "medium"));
   scene.objects = parseObjects(requireMember(json, "", "objects"), baseDir);
   if (const Json* shadowMap = findMember(json, "shadowMap")) scene.shadowMapSize = parseShadowMap(*shadowMap);

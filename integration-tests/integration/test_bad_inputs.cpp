@@ -98,7 +98,22 @@ std::vector<BadCase> badCases() {
          f.camera.projection = {1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, -1, 0, 0, -0.1f, 0};
          f.camera.infiniteFarSkyDistance = 0.0f;
        }},
-      {"light-colour texture", Status::UnsupportedFeature, [](F& f, S&) { f.lightColor = f.color; }},
+      {"light-colour texture in a depth format", Status::UnsupportedFormat, [](F& f, S&) { f.lightColor = f.depth; }},
+      {"light-colour texture with a null view", invalid, [](F& f, S&) {
+         f.lightColor = f.color;
+         f.lightColor.view = VK_NULL_HANDLE;
+       }},
+      {"light-colour texture for a point light", Status::UnsupportedFeature, [](F& f, S& s) {
+         f.light.type = LightType::Point;
+         s.shadowMaps.assign(6, s.shadowMaps[0]);
+         f.shadowMaps = s.shadowMaps;
+         f.lightColor = f.color;
+       }},
+      {"debug view without an image", invalid, [](F& f, S&) { f.debugView = DebugView::EpipolarSamples; }},
+      {"unknown debug view", invalid, [](F& f, S&) {
+         f.debugView = static_cast<DebugView>(7);
+         f.debugOutput = f.scatteringOutput;
+       }},
       {"AOV with zero extent", invalid, [](F& f, S&) { f.scatteringOutput.extent = {0, 0}; }},
       {"zero auto budget", invalid, [](F& f, S&) { f.autoBudgetMilliseconds = 0.0f; }},
       {"unknown technique", invalid, [](F& f, S&) { f.technique = static_cast<Technique>(99); }},

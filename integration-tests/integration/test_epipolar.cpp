@@ -90,7 +90,9 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
   o.technique = Technique::None;
   o.frames = 3;  // the sample counts of a frame are read when its slot comes round again
   const double pixels = double(o.width) * o.height;
-  for (const auto& [profile, bar, sampleShare] : {std::tuple{Profile::High, 0.03, 0.5},
+  // Balanced marches far fewer samples than pixels everywhere; High spends up to about half the
+  // pixels on a scene of thin occluders (forest: its depth breaks), so its bound is looser.
+  for (const auto& [profile, bar, sampleShare] : {std::tuple{Profile::High, 0.03, 0.6},
                                                   std::tuple{Profile::Balanced, 0.06, 0.25}}) {
     o.profile = profile;
     const samples::RenderResult r = renderWithAovs(scene, o);
@@ -115,9 +117,8 @@ TEST_P(EpipolarProfiles, HighAndBalancedMatchTheReference) {
   expectProfilesMatchTheReference(loadTestScene(GetParam()), GetParam());
 }
 
-// spot-lamp joins once its lit sections are integrated per cone region (measured 5.0% for High).
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
-                         ::testing::Values("pillars", "fence", "forest", "window-room"),
+                         ::testing::Values("pillars", "fence", "forest", "window-room", "spot-lamp"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;

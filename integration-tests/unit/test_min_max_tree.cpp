@@ -67,6 +67,7 @@ struct SliceAccess {
     }
     return slice->samples[static_cast<size_t>(k)];
   }
+  vec3 color(float) const { return vec3(1.0f); }
 };
 
 enum class Profile { Smooth, Noisy, ClearRuns, Steps, Constant };
@@ -382,7 +383,7 @@ TEST(MinMaxMarch, TreeEqualsPlainMarchForEveryMaxStep) {
         for (int i = 0; i < rays_per_profile; ++i) {
           const TynMinMaxRay r = randomRay(n, rng);
           const SliceAccess plain_access{&s, -1};
-          const TynMinMaxMarch plain = tyn_min_max_march_plain(plain_access, n, r);
+          const TynMinMaxMarch plain = tyn_min_max_march_plain(plain_access, n, r, false);
           bad_reads += plain_access.bad_reads;
 
           // The plain march against the same lit set integrated in double.
@@ -403,7 +404,7 @@ TEST(MinMaxMarch, TreeEqualsPlainMarchForEveryMaxStep) {
           const int highest = tyn_min_max_highest_level(n);
           for (int top = -1; top <= highest + 1; ++top) {
             const SliceAccess access{&s, std::min(top, highest)};
-            const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r);
+            const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r, false);
             bad_reads += access.bad_reads;
             for (int c = 0; c < 3; ++c) {
               const double rel = relativeDifference(tree.lit_integral[c], plain.lit_integral[c]);
@@ -433,6 +434,69 @@ TEST(MinMaxMarch, TreeEqualsPlainMarchForEveryMaxStep) {
               "worst plain vs double %.2e of the unshadowed integral\n", rays, worst_tree, worst_double);
 }
 
+// A light-colour texture along the slice (coloured shafts): a smooth, channel-varying colour.
+struct ColoredAccess : SliceAccess {
+  vec3 color(float u) const {
+    return vec3(0.6f + 0.4f * std::sin(0.37f * u), 0.5f + 0.5f * std::cos(0.11f * u), 0.25f);
+  }
+};
+dvec3 colorDouble(double u) { return dvec3(0.6 + 0.4 * std::sin(0.37 * u), 0.5 + 0.5 * std::cos(0.11 * u), 0.25); }
+
+// Coloured marches: every lit part is taken at the fine step with its colour, so the tree (which
+// now only skips shadowed nodes) still equals the plain march, both equal Σ colour(middle of the
+// part) · ∫ over the part in double, and a white light gives the uncoloured march's result.
+TEST(MinMaxMarch, ColoredTreeEqualsColoredPlainAndDouble) {
+  std::mt19937 rng(48);
+  double worst_tree = 0.0, worst_double = 0.0, worst_white = 0.0;
+  long plain_steps = 0, tree_steps = 0, uncolored_tree_steps = 0;
+  for (Profile kind : kProfiles) {
+    for (int n : {64, 512}) {
+      for (int p = 0; p < 6; ++p) {
+        const Slice s = makeProfile(kind, n, rng);
+        for (int i = 0; i < 40; ++i) {
+          const TynMinMaxRay r = randomRay(n, rng);
+          const ColoredAccess colored{{&s, tyn_min_max_highest_level(n)}};
+          const SliceAccess white{&s, tyn_min_max_highest_level(n)};
+          const TynMinMaxMarch plain = tyn_min_max_march_plain(colored, n, r, true);
+          const TynMinMaxMarch tree = tyn_min_max_march_tree(colored, n, tyn_min_max_highest_level(n), r, true);
+          const TynMinMaxMarch white_colored = tyn_min_max_march_plain(white, n, r, true);
+          const TynMinMaxMarch uncolored = tyn_min_max_march_tree(white, n, tyn_min_max_highest_level(n), r, false);
+          plain_steps += plain.steps;
+          tree_steps += tree.steps;
+          uncolored_tree_steps += uncolored.steps;
+          for (int c = 0; c < 3; ++c) {
+            worst_tree = std::max(worst_tree, relativeDifference(tree.lit_integral[c], plain.lit_integral[c]));
+            ASSERT_LE(relativeDifference(tree.lit_integral[c], plain.lit_integral[c]), 1e-6)
+                << profileName(kind) << " L " << n << " ray " << i;
+            // Σ colour(middle) · ∫ over each cell's lit part, in double.
+            double expected = 0.0, full = 0.0;
+            for (const auto& [a, b] : plainLitSetDouble(s, r)) {
+              expected += colorDouble(0.5 * (a + b))[c] * integrate(r, {{a, b}}, c);
+            }
+            const double a = std::clamp(double(r.u_begin), 0.0, double(n));
+            full = integrate(r, {{a, std::clamp(double(r.u_end), a, double(n))}}, c);
+            const double err = std::abs(double(plain.lit_integral[c]) - expected);
+            worst_double = std::max(worst_double, full > 0.0 ? err / full : err);
+            const double position_ulp = std::nextafter(float(n), 2.0f * float(n)) - float(n);
+            ASSERT_LE(err, 1e-4 * full + 4.0 * position_ulp * std::abs(double(r.t_slope)) + 1e-9)
+                << profileName(kind) << " L " << n << " ray " << i << " channel " << c;
+            const double white_difference = relativeDifference(white_colored.lit_integral[c], uncolored.lit_integral[c]);
+            worst_white = std::max(worst_white, white_difference);
+            ASSERT_LE(white_difference, 1e-4) << profileName(kind) << " L " << n << " ray " << i;
+          }
+        }
+      }
+    }
+  }
+  // Shadowed nodes are still skipped whole and lit ones walked cell by cell: the coloured tree
+  // costs more than the uncoloured one and less than the plain march.
+  EXPECT_GT(tree_steps, uncolored_tree_steps);
+  EXPECT_LT(tree_steps, plain_steps);
+  std::printf("[ MinMax ] coloured: worst tree/plain %.2e, plain vs double %.2e of the unshadowed integral, "
+              "white vs uncoloured %.2e; steps plain %ld, coloured tree %ld, uncoloured tree %ld\n",
+              worst_tree, worst_double, worst_white, plain_steps, tree_steps, uncolored_tree_steps);
+}
+
 // Fully lit or fully shadowed stretches cost one node; the maximum step caps the stride.
 TEST(MinMaxMarch, StepCountsFarBelowTheSampleCount) {
   const int n = 4096;
@@ -449,21 +513,21 @@ TEST(MinMaxMarch, StepCountsFarBelowTheSampleCount) {
   const TynMinMaxRay shadowed = tyn_min_max_ray(0.0f, float(n), 0.7f, 0.9f, 0.0f, 100.0f, sigma);
   for (int top = 0; top <= highest; ++top) {
     const SliceAccess access{&s, top};
-    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, lit).steps, n / tyn_min_max_node_span(top));
-    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, shadowed).steps, n / tyn_min_max_node_span(top));
+    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, lit, false).steps, n / tyn_min_max_node_span(top));
+    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, shadowed, false).steps, n / tyn_min_max_node_span(top));
   }
   const SliceAccess full{&s, highest};
-  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, lit).steps, 1);
-  EXPECT_EQ(tyn_min_max_march_plain(full, n, lit).steps, n);
-  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, shadowed).lit_integral, vec3(0.0f));
+  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, lit, false).steps, 1);
+  EXPECT_EQ(tyn_min_max_march_plain(full, n, lit, false).steps, n);
+  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, shadowed, false).lit_integral, vec3(0.0f));
 
   // A ray crossing the constant occluder depth once: one root-to-leaf path down and one up.
   const TynMinMaxRay crossing = tyn_min_max_ray(0.0f, float(n), 0.2f, 0.9f, 0.0f, 100.0f, sigma);
-  const int crossing_steps = tyn_min_max_march_tree(full, n, highest, crossing).steps;
+  const int crossing_steps = tyn_min_max_march_tree(full, n, highest, crossing, false).steps;
   EXPECT_LE(crossing_steps, 2 * (highest + 2));
   // Starting mid-slice at an odd position: the march climbs back up in log L steps.
   const TynMinMaxRay offset = tyn_min_max_ray(1234.5f, 4000.25f, 0.1f, 0.5f, 3.0f, 90.0f, sigma);
-  const int offset_steps = tyn_min_max_march_tree(full, n, highest, offset).steps;
+  const int offset_steps = tyn_min_max_march_tree(full, n, highest, offset, false).steps;
   EXPECT_LE(offset_steps, 2 * (highest + 2));
 
   // Half shadowed, half lit: the root is mixed, its two children decide.
@@ -473,7 +537,7 @@ TEST(MinMaxMarch, StepCountsFarBelowTheSampleCount) {
   }
   buildTree(s);
   const TynMinMaxRay flat = tyn_min_max_ray(0.0f, float(n), 0.5f, 0.5f, 0.0f, 100.0f, sigma);
-  const TynMinMaxMarch halves = tyn_min_max_march_tree(full, n, highest, flat);
+  const TynMinMaxMarch halves = tyn_min_max_march_tree(full, n, highest, flat, false);
   EXPECT_EQ(halves.steps, 3);
   EXPECT_NEAR(halves.lit_integral.z, 50.0f, 1e-4f);  // σ = 0: the lit half's length 100 / 2
   EXPECT_EQ(full.bad_reads, 0);
@@ -678,7 +742,7 @@ TEST(MinMaxConservative, LineMarchAgreesWithTheTexelExactWalk) {
         length_ray.t_slope = 1.0f;
         length_ray.sigma_t = vec3(0.0f);
         const SliceAccess access{&s, highest};
-        EXPECT_NEAR(tyn_min_max_march_plain(access, n, length_ray).lit_integral.x, measure(lit1d), 1e-4);
+        EXPECT_NEAR(tyn_min_max_march_plain(access, n, length_ray, false).lit_integral.x, measure(lit1d), 1e-4);
 
         // Disagreement per piece: 1D lit where the walk is strictly shadowed, and vice versa.
         std::vector<double> cell_disagreement(static_cast<size_t>(n), 0.0);
@@ -743,9 +807,9 @@ TEST(MinMaxConservative, LineMarchAgreesWithTheTexelExactWalk) {
         }
 
         // And on these realistic slices too, the tree equals the plain march at every max step.
-        const TynMinMaxMarch plain = tyn_min_max_march_plain(access, n, r);
+        const TynMinMaxMarch plain = tyn_min_max_march_plain(access, n, r, false);
         for (int top = -1; top <= highest; ++top) {
-          const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r);
+          const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r, false);
           for (int c = 0; c < 3; ++c) {
             worst_tree = std::max(worst_tree, relativeDifference(tree.lit_integral[c], plain.lit_integral[c]));
           }

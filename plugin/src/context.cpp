@@ -33,6 +33,13 @@ VkImageLayout sampledDepthLayout(VkImageLayout entry) {
   }
 }
 
+// Layout in which a host colour image is sampled: kept when it already allows sampling.
+VkImageLayout sampledColorLayout(VkImageLayout entry) {
+  return entry == VK_IMAGE_LAYOUT_GENERAL || entry == VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL
+             ? entry
+             : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+}
+
 VkImageLayout keepGeneral(VkImageLayout entry, VkImageLayout wanted) {
   return entry == VK_IMAGE_LAYOUT_GENERAL ? entry : wanted;
 }
@@ -96,6 +103,9 @@ struct Context::Impl {
   Gpu gpu;
   VkExtent2D extent{};
   VkSampler nearest = VK_NULL_HANDLE;
+  VkSampler linear = VK_NULL_HANDLE;   // the light-colour texture's
+  OwnedImage white;                    // 1×1 white: the light-colour texture of frames without one
+  bool whiteCleared = false;
   std::vector<MappedBuffer> constants;  // one per frame slot
   GpuTimer timer;
   ReferencePass reference;
@@ -135,6 +145,15 @@ Outcome Context::Impl::createSizeIndependent() {
   samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
   VkResult result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &nearest);
   if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+  samplerInfo.magFilter = VK_FILTER_LINEAR;
+  samplerInfo.minFilter = VK_FILTER_LINEAR;
+  result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &linear);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+  if (Outcome o = createImage(gpu, VK_FORMAT_R8G8B8A8_UNORM, {1, 1},
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, white);
+      !o) {
+    return o;
+  }
 
   constants.resize(desc.maxFramesInFlight);
   for (MappedBuffer& buffer : constants) {
@@ -144,8 +163,8 @@ Outcome Context::Impl::createSizeIndependent() {
   }
   if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
   stats.timestampsSupported = timer.supported();
-  if (Outcome o = reference.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
-  if (Outcome o = epipolar.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
+  if (Outcome o = reference.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
+  if (Outcome o = epipolar.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
   if (desc.backBufferFormat != VK_FORMAT_UNDEFINED) {
     if ((gpu.optimalFeatures(desc.backBufferFormat) & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) == 0) {
@@ -178,6 +197,9 @@ void Context::Impl::destroyAll() {
   timer.destroy(gpu);
   for (MappedBuffer& buffer : constants) destroyBuffer(gpu, buffer);
   constants.clear();
+  destroyImage(gpu, white);
+  if (linear != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, linear, gpu.allocator);
+  linear = VK_NULL_HANDLE;
   if (nearest != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, nearest, gpu.allocator);
   nearest = VK_NULL_HANDLE;
 }
@@ -373,6 +395,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   bindings.constants = constants[slot].buffer;
   bindings.depth = frame.depth.view;
   bindings.depthLayout = sampledDepthLayout(frame.depth.layout);
+  bindings.light = frame.light.type;
   bindings.scattering = scattering.view;
   bindings.transmittance = transmittance.view;
   auto acquireDepth = [&](const ImageRef& image, VkImageLayout layout) {
@@ -384,6 +407,28 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                  hostAfter(image));
   };
   acquireDepth(frame.depth, bindings.depthLayout);
+  // The light-colour texture, or the white texel (cleared once, in the first frame that needs it).
+  if (!frame.lightColor.empty()) {
+    bindings.lightColor = frame.lightColor.view;
+    bindings.lightColorLayout = sampledColorLayout(frame.lightColor.layout);
+    bindings.hasLightColor = true;
+    imageBarrier(gpu, cmd, frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
+                 hostBefore(frame.lightColor), {bindings.lightColorLayout, compute, VK_ACCESS_SHADER_READ_BIT});
+  } else {
+    if (!whiteCleared) {
+      imageBarrier(gpu, cmd, white.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, compute, 0},
+                   {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
+      const VkClearColorValue one{{1.0f, 1.0f, 1.0f, 1.0f}};
+      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      gpu.vk.vkCmdClearColorImage(cmd, white.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &one, 1, &range);
+      imageBarrier(gpu, cmd, white.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                   {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
+                   {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, compute, VK_ACCESS_SHADER_READ_BIT});
+      whiteCleared = true;
+    }
+    bindings.lightColor = white.view;
+    bindings.lightColorLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  }
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
     const ImageRef& map = frame.shadowMaps[i].depth;
     bindings.shadowMaps[i] = map.view;
@@ -407,6 +452,10 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                     stats.passesRecorded);
   }
   releaseDepth(frame.depth, bindings.depthLayout);
+  if (!frame.lightColor.empty()) {
+    imageBarrier(gpu, cmd, frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
+                 {bindings.lightColorLayout, compute, 0}, hostAfter(frame.lightColor));
+  }
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
     releaseDepth(frame.shadowMaps[i].depth, bindings.shadowLayouts[i]);
   }

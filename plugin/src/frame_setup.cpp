@@ -187,7 +187,15 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   }
   if (Outcome o = checkOutputImage(gpu, frame.debugOutput, outputExtent, "debugOutput"); !o) return o;
   if (!frame.lightColor.empty()) {
-    return failure(Status::UnsupportedFeature, "lightColor: no technique supports a light-colour texture yet");
+    if (Outcome o = checkImage(frame.lightColor, "lightColor"); !o) return o;
+    if (isDepthFormat(frame.lightColor.format) ||
+        (gpu.optimalFeatures(frame.lightColor.format) & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) == 0) {
+      return failure(Status::UnsupportedFormat, "lightColor needs a colour format with linear filtering, got VkFormat " +
+                                                    std::to_string(static_cast<int>(frame.lightColor.format)));
+    }
+    if (frame.light.type == LightType::Point) {
+      return failure(Status::UnsupportedFeature, "lightColor: a point light has no single map to lay it over");
+    }
   }
   const std::uint32_t mapSize = frame.shadowMaps.empty() ? 0 : frame.shadowMaps[0].depth.extent.width;
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
@@ -235,7 +243,8 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   const bool lightOn = light.intensity > 0.0f && glm::length(glm::vec3(toVec(light.color))) > 0.0f;
   out.scatters = lightOn && glm::length(scattering) > 0.0f;
   out.attenuates = glm::length(extinction) > 0.0f;
-  k.extent = glm::uvec4(outputExtent.width, outputExtent.height, out.scatters ? 1u : 0u, 0u);
+  k.extent = glm::uvec4(outputExtent.width, outputExtent.height, out.scatters ? 1u : 0u,
+                        frame.lightColor.empty() ? 0u : 1u);
   return {};
 }
 

@@ -209,6 +209,36 @@ Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateComputePipelines", result);
 }
 
+Outcome createSpecializedPipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                                  std::span<const std::pair<std::uint32_t, std::uint32_t>> constants,
+                                  VkPipeline& out) {
+  std::vector<VkSpecializationMapEntry> entries;
+  std::vector<std::uint32_t> values;
+  for (const auto& [id, value] : constants) {
+    entries.push_back({id, static_cast<std::uint32_t>(values.size() * sizeof(std::uint32_t)), sizeof(std::uint32_t)});
+    values.push_back(value);
+  }
+  const VkSpecializationInfo info{static_cast<std::uint32_t>(entries.size()), entries.data(),
+                                  values.size() * sizeof(std::uint32_t), values.data()};
+  return createComputePipeline(gpu, layout, spirv, out, &info);
+}
+
+Outcome createLightPipelines(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                             LightPipelines& out) {
+  for (std::uint32_t type = 0; type < out.size(); ++type) {
+    const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> constants{{{kLightTypeConstantId, type}}};
+    if (Outcome o = createSpecializedPipeline(gpu, layout, spirv, constants, out[type]); !o) return o;
+  }
+  return {};
+}
+
+void destroyPipelines(const Gpu& gpu, std::span<VkPipeline> pipelines) {
+  for (VkPipeline& pipeline : pipelines) {
+    if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
+    pipeline = VK_NULL_HANDLE;
+  }
+}
+
 std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadowMapImageInfos(const ScatteringBindings& b) {
   std::array<VkDescriptorImageInfo, kMaxShadowMaps> infos{};
   for (std::uint32_t i = 0; i < kMaxShadowMaps; ++i) {

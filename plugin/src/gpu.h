@@ -80,6 +80,21 @@ Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
 /// A compute pipeline from embedded SPIR-V (entry point "main"), optionally specialised.
 Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
                               VkPipeline& out, const VkSpecializationInfo* specialization = nullptr);
+
+/// constant_id of TYN_LIGHT_TYPE (shaders/common/medium.glsl): passes that integrate light are
+/// built once per light type.
+inline constexpr std::uint32_t kLightTypeConstantId = 7;
+
+/// A compute pipeline with 32-bit specialisation constants, as (constant_id, value) pairs.
+Outcome createSpecializedPipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                                  std::span<const std::pair<std::uint32_t, std::uint32_t>> constants,
+                                  VkPipeline& out);
+
+/// One pipeline per light type (indexed by LightType), specialised on TYN_LIGHT_TYPE.
+using LightPipelines = std::array<VkPipeline, 3>;
+Outcome createLightPipelines(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
+                             LightPipelines& out);
+void destroyPipelines(const Gpu& gpu, std::span<VkPipeline> pipelines);
 /// A pool holding exactly `sets.size()` sets of `layout` (one per frame slot), and the sets.
 Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
                                std::span<const VkDescriptorPoolSize> perSetSizes, VkDescriptorPool& pool,
@@ -95,6 +110,11 @@ struct ScatteringBindings {
   std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
   VkImageView scattering = VK_NULL_HANDLE;
   VkImageView transmittance = VK_NULL_HANDLE;
+  /// The light-colour texture (readable by compute shaders), or a white texel without one.
+  VkImageView lightColor = VK_NULL_HANDLE;
+  VkImageLayout lightColorLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  bool hasLightColor = false;
+  LightType light = LightType::Directional;
   /// The debug view's target (storage, GENERAL) when the frame asks for one, else null.
   VkImageView debug = VK_NULL_HANDLE;
   DebugView debugView = DebugView::None;

@@ -125,6 +125,7 @@ FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, 
   frame.color = toImageRef(inputs.color);
   frame.scatteringOutput = toImageRef(inputs.aovScattering);
   frame.transmittanceOutput = toImageRef(inputs.aovTransmittance);
+  frame.lightColor = toImageRef(inputs.lightColor);
   frame.profile = profile;
   return frame;
 }

@@ -1,8 +1,16 @@
-// The medium and the light of a frame, evaluated at points along a view ray. Needs `frame`.
+// The medium and the light of a frame, evaluated at points along a view ray. Needs `frame` and
+// `light_color` (common/light_color.glsl).
 #ifndef TYNDALL_MEDIUM_GLSL
 #define TYNDALL_MEDIUM_GLSL
 
+#include "common/light_color.glsl"
 #include "common/phase.h"
+
+// The frame's light type (TYN_LIGHT_*), a specialisation constant: each pass that integrates light
+// is built once per light type, so that it carries only its light's code. On a CPU driver
+// (lavapipe) a uniform branch still costs both sides, and the spot's extra code in the same
+// pipeline was measured to change a point light's result (a miscompile of unexecuted code).
+layout(constant_id = 7) const uint TYN_LIGHT_TYPE = TYN_LIGHT_DIRECTIONAL;
 
 // Σ_components σ_s · p(cos θ): the scattered fraction towards the camera, per channel.
 vec3 tyn_phase_weighted_scattering(float cos_theta) {
@@ -32,18 +40,21 @@ vec3 tyn_local_light_integrand(vec3 origin, vec3 view_dir, float t) {
   float d2 = max(dot(to_light, to_light), 1e-12);
   float d = sqrt(d2);
   vec3 omega_l = to_light / d;
-  float falloff = frame.counts.x == TYN_LIGHT_SPOT
+  float falloff = TYN_LIGHT_TYPE == TYN_LIGHT_SPOT
                       ? tyn_spot_falloff(dot(-omega_l, frame.light_direction.xyz))
                       : 1.0;
-  vec3 irradiance = frame.light_radiance.rgb * (falloff / d2) * exp(-frame.extinction.rgb * d);
+  // A light-colour texture filters the light at every quadrature node: next to a spot light the
+  // integrand peaks within a texel, where one colour per segment would be off.
+  vec3 irradiance = frame.light_radiance.rgb * tyn_light_color_at(x) * (falloff / d2) * exp(-frame.extinction.rgb * d);
   return irradiance * tyn_phase_weighted_scattering(dot(view_dir, omega_l)) *
          exp(-frame.extinction.rgb * t);
 }
 
 // ∫_a^b of the integrand above by 4-point Gauss–Legendre on pieces no longer than half the
 // distance to the light, so that the 1/d² peak near the light is resolved (relative error of
-// the rule on such a piece is below 1e-5 for 1/d²).
-vec3 tyn_local_light_segment(vec3 origin, vec3 view_dir, float a, float b) {
+// the rule on such a piece is below 1e-5 for 1/d²). Needs a < b and a segment on which the
+// integrand is smooth (tyn_local_light_section splits one at the spot cones first).
+vec3 tyn_local_light_piece(vec3 origin, vec3 view_dir, float a, float b) {
   // Nodes ±x0, ±x1 and weights w0, w1 of the 4-point rule on [−1, 1].
   const float x0 = 0.3399810435848563;
   const float x1 = 0.8611363115940526;
@@ -64,6 +75,60 @@ vec3 tyn_local_light_segment(vec3 origin, vec3 view_dir, float a, float b) {
                  tyn_local_light_integrand(origin, view_dir, mid + d1));
   }
   return sum * 0.5 * h;
+}
+
+// tyn_local_light_piece where the span is not empty.
+vec3 tyn_local_light_span(vec3 origin, vec3 view_dir, float a, float b) {
+  return b > a ? tyn_local_light_piece(origin, view_dir, a, b) : vec3(0.0);
+}
+
+// Roots of A t² + B t + C = 0 without cancellation; 1e30 for a missing root (beyond any ray, and
+// no NaN, which a driver's fast maths may not keep).
+vec2 tyn_quadratic_roots(float A, float B, float C) {
+  const float none = 1e30;
+  if (abs(A) <= 1e-12 * (abs(B) + abs(C))) return vec2(abs(B) > 0.0 ? -C / B : none, none);
+  float disc = B * B - 4.0 * A * C;
+  if (disc < 0.0) return vec2(none);
+  float q = -0.5 * (B + (B >= 0.0 ? 1.0 : -1.0) * sqrt(disc));
+  return vec2(q / A, q != 0.0 ? C / q : none);
+}
+
+// Where the ray origin + t·dir crosses the cone of half-angle acos(cos_angle) around the spot's
+// axis (either nappe: a crossing of the back one is only an extra split). Solved around the ray's
+// closest approach to the light, t_L + s: the coefficients then scale with that distance h rather
+// than with the distance to the camera, which in float cancelled down to a few digits for rays
+// passing near the light (the roots moved by more than the penumbra).
+vec2 tyn_spot_cone_crossings(vec3 origin, vec3 dir, float cos_angle) {
+  vec3 axis = frame.light_direction.xyz;
+  float t_l = dot(frame.light_position.xyz - origin, dir);
+  vec3 w = origin + t_l * dir - frame.light_position.xyz;  // ⟂ dir, |w| = h
+  float wa = dot(w, axis);
+  float va = dot(dir, axis);
+  float c2 = cos_angle * cos_angle;
+  vec2 s = tyn_quadratic_roots(va * va - c2, 2.0 * wa * va, wa * wa - c2 * dot(w, w));
+  return vec2(s.x < 1e29 ? t_l + s.x : s.x, s.y < 1e29 ? t_l + s.y : s.y);
+}
+
+// ∫_a^b of a local light's in-scattering, the spot's falloff included: split where the ray crosses
+// the inner and the outer cone, where the smoothstep falloff has its kinks (a quadrature across
+// one is off by up to the whole penumbra), then each smooth piece by tyn_local_light_piece.
+vec3 tyn_local_light_segment(vec3 origin, vec3 view_dir, float a, float b) {
+  vec3 sum = vec3(0.0);
+  if (TYN_LIGHT_TYPE == TYN_LIGHT_SPOT) {
+    vec2 outer = tyn_spot_cone_crossings(origin, view_dir, frame.light_direction.w);
+    vec2 inner = tyn_spot_cone_crossings(origin, view_dir, frame.light_radiance.w);
+    // Missed cones (1e30) are clamped away to b; a sorting network orders the four cuts.
+    vec4 c = clamp(vec4(outer, inner), vec4(a), vec4(max(a, b)));
+    c = vec4(min(c.x, c.y), max(c.x, c.y), min(c.z, c.w), max(c.z, c.w));
+    c = vec4(min(c.x, c.z), min(c.y, c.w), max(c.x, c.z), max(c.y, c.w));  // (lowest, ?, ?, highest)
+    c = vec4(c.x, min(c.y, c.z), max(c.y, c.z), c.w);
+    sum = tyn_local_light_span(origin, view_dir, a, c.x) + tyn_local_light_span(origin, view_dir, c.x, c.y) +
+          tyn_local_light_span(origin, view_dir, c.y, c.z) + tyn_local_light_span(origin, view_dir, c.z, c.w) +
+          tyn_local_light_span(origin, view_dir, c.w, b);
+  } else {
+    sum = tyn_local_light_span(origin, view_dir, a, b);
+  }
+  return sum;
 }
 
 #endif

@@ -46,6 +46,8 @@ layout(set = 0, binding = 13, std430) buffer MarchList {
   uint march_samples[];
 };
 
+// The light-colour texture (common/light_color.glsl); a white texel when the frame has none.
+layout(set = 0, binding = 15) uniform sampler2D light_color;
 // The debug view (DebugView), bound only for the debug passes.
 layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D debug_image;
 

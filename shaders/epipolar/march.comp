@@ -4,7 +4,9 @@
 // march runs along that line in its 1D parameter u: with the tree, fully lit sections are
 // integrated in one step, fully shadowed ones skipped and mixed ones descended; without it, every
 // cell is tested (the same lit set: the tree is exact). Lit sections of a directional light are
-// integrated in closed form; a spot light's by quadrature of the exact integrand. Point lights
+// integrated in closed form; a spot light's by quadrature of the exact integrand; with a
+// light-colour texture lit sections are walked at the fine step, each part times its colour
+// (yusov2013 "Colored Light Shafts"). Point lights
 // (six maps, no single line) and slices without a line in the map use the Reference's texel walk.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
@@ -30,16 +32,25 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
   return tyn_local_light_segment(g_ray_origin, g_ray_direction, min(t_a, t_b), max(t_a, t_b));
 }
 
+// The light-colour texture at the slice line's 1D position u, for a directional light's lit parts;
+// a local light's quadrature takes the colour at each node (common/medium.glsl).
+vec3 tyn_march_light_color(float u) {
+  if (TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) return vec3(1.0);
+  return tyn_light_color_uv((g_origin_texels + u * g_step_texels) / float(frame.counts.w));
+}
+
 #define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(texel)
+#define TYN_MIN_MAX_COLOR(u) tyn_march_light_color(u)
 #define TYN_MIN_MAX_SAMPLE(k) tyn_min_max_cell_sample(g_origin_texels, g_step_texels, k)
 #define TYN_MIN_MAX_FETCH(level, index) \
   imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree.x), level) + (index), g_slice)).xy
-// The pipeline is specialised per kind of light, so that the compiler drops the other integral:
-// a run-time choice here costs the directional march several times its time on a CPU driver, whose
-// vectorised code evaluates both sides of the branch.
-layout(constant_id = 0) const bool TYN_MARCH_LOCAL_LIGHT = false;
+// The pipeline is specialised per light type (TYN_LIGHT_TYPE, common/medium.glsl), so that the
+// compiler drops the other integral: a run-time choice here costs the directional march several
+// times its time on a CPU driver, whose vectorised code evaluates both sides of the branch.
+// Specialised too: with a light-colour texture lit sections are walked at the fine step.
+layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
 #define TYN_MIN_MAX_INTEGRATE(ray, a, b) \
-  (TYN_MARCH_LOCAL_LIGHT ? tyn_march_local_light(a, b) : tyn_min_max_directional_integral(ray, a, b))
+  (TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL ? tyn_march_local_light(a, b) : tyn_min_max_directional_integral(ray, a, b))
 #include "epipolar/min_max_tree.h"
 
 layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
@@ -53,7 +64,7 @@ vec3 tyn_march_along_slice(int slice, vec4 origin_direction, vec3 origin, vec3 d
   g_step_texels = tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w));
   g_ray_origin = origin;
   g_ray_direction = dir;
-  bool directional = frame.counts.x == TYN_LIGHT_DIRECTIONAL;
+  bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
 
   // The part of the ray inside the map (a directional light's square slab, a spot light's
   // frustum); outside it a directional light is unshadowed and a spot light does not reach.
@@ -83,8 +94,8 @@ vec3 tyn_march_along_slice(int slice, vec4 origin_direction, vec3 origin, vec3 d
                                        frame.extinction.rgb);
     int sample_count = int(epipolar.tree.x);
     TynMinMaxMarch march = epipolar.tree.z != 0u
-                               ? tyn_min_max_march_tree(sample_count, int(epipolar.tree.y), ray)
-                               : tyn_min_max_march_plain(sample_count, ray);
+                               ? tyn_min_max_march_tree(sample_count, int(epipolar.tree.y), ray, TYN_MARCH_LIGHT_COLOR)
+                               : tyn_min_max_march_plain(sample_count, ray, TYN_MARCH_LIGHT_COLOR);
     lit = march.lit_integral;
   }
   if (!directional) return lit;

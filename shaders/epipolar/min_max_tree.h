@@ -55,12 +55,15 @@
 //                                    is tyn_min_max_level_offset(L, level) + index
 //   TYN_MIN_MAX_INTEGRATE(ray, a, b) optional, vec3: ∫ over the lit part u ∈ [a, b]; defaults to the
 //                                    directional closed form (a spot light plugs its LUT in here)
+//   TYN_MIN_MAX_COLOR(u)             optional, vec3: the light's colour at 1D position u (coloured
+//                                    shafts, see `colored` below); defaults to white
 // Only the functions whose accessors are defined are compiled. Example (march pass):
 //   #define TYN_MIN_MAX_FETCH(level, index) texelFetch(min_max_tree,
 //       ivec2(tyn_min_max_level_offset(L, level) + (index), slice), 0).xy     (on one line)
 // In C++ each of these functions is a template whose first parameter is an accessor object with
 // the members it uses: `float shadow_texel(ivec2) const`, `float sample(int) const`,
-// `vec2 fetch(int level, int index) const`. The arguments after it are the same in both languages.
+// `vec2 fetch(int level, int index) const`, `vec3 color(float u) const`. The arguments after it are
+// the same in both languages.
 // IMPORTANT: the samples and the tree must be built from the same shadow map with the same
 // origin/step, or the tree is no longer exact.
 #ifndef TYNDALL_MIN_MAX_TREE_H
@@ -75,6 +78,7 @@
 #define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_access.shadow_texel(texel)
 #define TYN_MIN_MAX_SAMPLE(k) tyn_access.sample(k)
 #define TYN_MIN_MAX_FETCH(level, index) tyn_access.fetch(level, index)
+#define TYN_MIN_MAX_COLOR(u) tyn_access.color(u)
 #else
 #define TYN_MIN_MAX_TEMPLATE
 #define TYN_MIN_MAX_ACCESS
@@ -83,6 +87,9 @@
 
 #ifndef TYN_MIN_MAX_INTEGRATE
 #define TYN_MIN_MAX_INTEGRATE(ray, a, b) tyn_min_max_directional_integral(ray, a, b)
+#endif
+#ifndef TYN_MIN_MAX_COLOR
+#define TYN_MIN_MAX_COLOR(u) vec3(1.0f)
 #endif
 
 TYN_BEGIN
@@ -287,6 +294,17 @@ TYN_FUNC void tyn_min_max_add_lit(TYN_INOUT(TynMinMaxLitSpan) span, TynMinMaxRay
   span.end = part.y;
 }
 
+// Coloured shafts (yusov2013 "Colored Light Shafts"): with a light-colour texture a long lit
+// section cannot be integrated in one step, the colour varies along it, so each cell's lit part is
+// integrated on its own, times the colour at its middle (the fine step); only shadowed sections are
+// skipped whole. Nothing is merged, so the plain and the tree march still add the same terms.
+TYN_MIN_MAX_TEMPLATE
+TYN_FUNC void tyn_min_max_add_colored(TYN_MIN_MAX_ACCESS TYN_INOUT(TynMinMaxLitSpan) span, TynMinMaxRay ray,
+                                      vec2 part) {
+  if (part.y <= part.x) return;
+  span.integral += TYN_MIN_MAX_COLOR(0.5f * (part.x + part.y)) * TYN_MIN_MAX_INTEGRATE(ray, part.x, part.y);
+}
+
 TYN_FUNC vec3 tyn_min_max_close(TynMinMaxLitSpan span, TynMinMaxRay ray) {
   return span.end > span.begin ? span.integral + TYN_MIN_MAX_INTEGRATE(ray, span.begin, span.end)
                                : span.integral;
@@ -299,10 +317,11 @@ struct TynMinMaxMarch {
 };
 
 #if defined(TYN_MIN_MAX_SAMPLE)
-// The plain march: every cell of [u_begin, u_end] ∩ [0, L] against its sample.
+// The plain march: every cell of [u_begin, u_end] ∩ [0, L] against its sample. `colored`: see
+// tyn_min_max_add_colored.
 TYN_MIN_MAX_TEMPLATE
-TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_count,
-                                                TynMinMaxRay ray) {
+TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_count, TynMinMaxRay ray,
+                                                bool colored) {
   float end = float(sample_count);
   float a = clamp(ray.u_begin, 0.0f, end);
   float b = clamp(ray.u_end, a, end);
@@ -314,10 +333,13 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_co
     float cb = min(b, float(k + 1));
     if (cb <= ca) continue;
     ++result.steps;
-    tyn_min_max_add_lit(span, ray,
-                        tyn_min_max_lit_part(ca, cb, tyn_min_max_depth_at(ray, ca),
-                                             tyn_min_max_depth_at(ray, cb),
-                                             TYN_MIN_MAX_SAMPLE(k)));
+    vec2 part = tyn_min_max_lit_part(ca, cb, tyn_min_max_depth_at(ray, ca), tyn_min_max_depth_at(ray, cb),
+                                     TYN_MIN_MAX_SAMPLE(k));
+    if (colored) {
+      tyn_min_max_add_colored(TYN_MIN_MAX_PASS span, ray, part);
+    } else {
+      tyn_min_max_add_lit(span, ray, part);
+    }
   }
   result.lit_integral = tyn_min_max_close(span, ray);
   return result;
@@ -333,9 +355,11 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_co
 // starts at `top_level` (−1: no tree, the plain march; levels above the tree's are clamped), so
 // no step exceeds 2^(top_level+1) samples: yusov2013's maximum step.
 // Every node is tested at most once and the tree has < 2L nodes, which bounds the loop.
+// `colored`: a lit node's cells are walked one by one (tyn_min_max_add_colored, at most L more
+// iterations); only shadowed nodes are skipped whole.
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_count, int top_level,
-                                               TynMinMaxRay ray) {
+                                               TynMinMaxRay ray, bool colored) {
   float end = float(sample_count);
   float a = clamp(ray.u_begin, 0.0f, end);
   float b = clamp(ray.u_end, a, end);
@@ -347,7 +371,12 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_cou
   float u = a;
   int k = min(int(floor(a)), sample_count - 1);
   int level = highest;
-  int max_iterations = 2 * sample_count + highest + 2;
+  // Coloured marches walk the cells of a lit node one per iteration: cells before lit_until are
+  // known to be lit whole (the node's minimum bounds their samples). One loop without `continue`
+  // or an inner cell loop: lavapipe's JIT miscompiled those forms of this march (its coloured
+  // results then differed from the plain march's).
+  int lit_until = -1;
+  int max_iterations = 3 * sample_count + highest + 2;
   for (int i = 0; i < max_iterations && u < b; ++i) {
     int span_log2 = level + 1;
     int node = k >> span_log2;
@@ -356,20 +385,34 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_cou
     float za = tyn_min_max_depth_at(ray, u);
     float zb = tyn_min_max_depth_at(ray, sb);
     ++result.steps;
+    bool advance = true;
     if (level < 0) {
-      tyn_min_max_add_lit(span, ray, tyn_min_max_lit_part(u, sb, za, zb, TYN_MIN_MAX_SAMPLE(k)));
+      vec2 part = k < lit_until ? vec2(u, sb) : tyn_min_max_lit_part(u, sb, za, zb, TYN_MIN_MAX_SAMPLE(k));
+      if (colored) {
+        tyn_min_max_add_colored(TYN_MIN_MAX_PASS span, ray, part);
+      } else {
+        tyn_min_max_add_lit(span, ray, part);
+      }
     } else {
       int c = tyn_min_max_classify(za, zb, TYN_MIN_MAX_FETCH(level, node));
       if (c == TYN_MIN_MAX_MIXED) {
         --level;
-        continue;
+        advance = false;
+      } else if (c == TYN_MIN_MAX_LIT && colored) {
+        lit_until = node_end;
+        level = -1;
+        advance = false;
+      } else if (c == TYN_MIN_MAX_LIT) {
+        tyn_min_max_add_lit(span, ray, vec2(u, sb));
       }
-      if (c == TYN_MIN_MAX_LIT) tyn_min_max_add_lit(span, ray, vec2(u, sb));
     }
-    u = sb;
-    k = node_end;
-    // The parent at level + 1 starts at k when k is a multiple of its span 2^(level+2).
-    while (level < highest && (k & ((1 << (level + 2)) - 1)) == 0) ++level;
+    if (advance) {
+      u = sb;
+      k = node_end;
+      // The parent at level + 1 starts at k when k is a multiple of its span 2^(level+2); not
+      // inside a lit node whose cells are being walked.
+      while (k >= lit_until && level < highest && (k & ((1 << (level + 2)) - 1)) == 0) ++level;
+    }
   }
   result.lit_integral = tyn_min_max_close(span, ray);
   return result;
@@ -382,6 +425,7 @@ TYN_END
 #undef TYN_MIN_MAX_SHADOW_TEXEL
 #undef TYN_MIN_MAX_SAMPLE
 #undef TYN_MIN_MAX_FETCH
+#undef TYN_MIN_MAX_COLOR
 #endif
 #undef TYN_MIN_MAX_TEMPLATE
 #undef TYN_MIN_MAX_ACCESS

@@ -3,10 +3,12 @@
 // ray's shadow-clip coordinates are linear in t (homogeneously), so the lit part of each texel
 // segment is found exactly by solving one linear inequality. Lit parts are integrated in closed
 // form for a directional light and by Gauss–Legendre quadrature for spot and point lights.
-// Needs `frame` (FrameConstants) and `shadow_maps[]` (sampler2D array) in scope.
+// Needs `frame` (FrameConstants), `shadow_maps[]` (sampler2D array) and `light_color` (sampler2D)
+// in scope.
 #ifndef TYNDALL_REFERENCE_MARCH_GLSL
 #define TYNDALL_REFERENCE_MARCH_GLSL
 
+#include "common/light_color.glsl"
 #include "common/medium.glsl"
 #include "common/segment_integral.h"
 
@@ -116,8 +118,14 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
         }
       }
       if (lit_end > lit_begin) {
-        sum += directional ? tyn_transmittance_integral(lit_begin, lit_end, frame.extinction.rgb)
-                           : tyn_local_light_segment(origin, dir, lit_begin, lit_end);
+        // A light-colour texture filters a directional light per texel segment, at its middle (the
+        // fine step); a local light's quadrature takes it at every node.
+        if (directional) {
+          sum += tyn_light_color_at(origin + dir * (0.5 * (lit_begin + lit_end))) *
+                 tyn_transmittance_integral(lit_begin, lit_end, frame.extinction.rgb);
+        } else {
+          sum += tyn_local_light_piece(origin, dir, lit_begin, lit_end);
+        }
       }
     }
     t = t_next;
@@ -133,7 +141,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
 
 // L_in along [0, s] of the view ray (DESIGN.md "Radiometry").
 vec3 tyn_reference_in_scattering(vec3 origin, vec3 dir, float s) {
-  if (frame.counts.x == TYN_LIGHT_DIRECTIONAL) {
+  if (TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL) {
     // Outside the map's square there is no occluder information: lit.
     float t_in = 0.0;
     float t_out = s;

@@ -12,6 +12,7 @@ layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
 layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D out_scattering;
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D out_transmittance;
+layout(set = 0, binding = 5) uniform sampler2D light_color;
 
 #include "common/view_ray.glsl"
 #include "reference/reference_march.glsl"

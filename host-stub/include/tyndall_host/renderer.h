@@ -94,6 +94,9 @@ struct PostProcessInputs {
   HostImage aovScattering;           ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
   HostImage aovTransmittance;        ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
   HostImage aovDebug;                ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages (cleared to 0)
+  /// The scene light's colour texture (stained glass over shadow map 0's square), R8G8B8A8_SRGB,
+  /// SHADER_READ_ONLY_OPTIMAL; empty when the light has none.
+  HostImage lightColor;
 };
 
 /// A pass of the post-process stack, inserted exactly as an engine would insert one.
@@ -157,6 +160,9 @@ bool displayToSrgb8(const ImageRgba32f& linear, std::vector<std::uint8_t>& rgba8
 bool writePng(const std::string& path, std::uint32_t width, std::uint32_t height,
               const std::vector<std::uint8_t>& rgba8, std::string& error);
 bool writeExr(const std::string& path, const ImageRgba32f& image, std::string& error);
+/// Any PNG, expanded to 8-bit RGBA, row 0 at the top.
+bool readPng(const std::string& path, std::uint32_t& width, std::uint32_t& height, std::vector<std::uint8_t>& rgba8,
+             std::string& error);
 bool readExr(const std::string& path, ImageRgba32f& out, std::string& error);
 
 }  // namespace tyndall::host

@@ -31,6 +31,9 @@ struct Light {
   double intensity = 1.0;
   double innerConeDegrees = 25.0;  ///< half-angle
   double outerConeDegrees = 30.0;  ///< half-angle
+  /// Optional "colorTexture": a PNG laid over the light's shadow map (stained glass), resolved
+  /// against the scene file's folder; directional and spot lights. Empty: none.
+  std::filesystem::path colorTexture;
 };
 
 enum class PhaseType { Isotropic, Rayleigh, HenyeyGreenstein, CornetteShanks };

@@ -244,8 +244,13 @@ struct FrameDesc {
   /// `Stats::techniqueNote` says so. The debug image is allocated at its first use.
   DebugView debugView = DebugView::None;
   ImageRef debugOutput;
-  /// Optional light-colour texture (stained glass). No technique supports it yet: a frame that
-  /// sets it is rejected with UnsupportedFeature.
+  /// Optional light-colour texture (stained glass, yusov2013 "Colored Light Shafts"): a colour
+  /// filter laid over shadowMaps[0]'s UV square (the same u, v as the depth texels); the light
+  /// reaching a point is multiplied by its linear RGB there (bilinear, clamped to the edge; outside
+  /// the square the light is unfiltered). Directional and spot lights (a point light fails with
+  /// UnsupportedFeature). Any colour format with SAMPLED_IMAGE_FILTER_LINEAR (an _SRGB format is
+  /// decoded to linear), usage SAMPLED, any size. The techniques walk lit sections at the fine step
+  /// (one shadow-map texel) where it is set, so it costs more.
   ImageRef lightColor;
 
   Profile profile = Profile::Balanced;

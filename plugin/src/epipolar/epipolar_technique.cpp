@@ -10,7 +10,7 @@ namespace {
 
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
-constexpr std::uint32_t kBindings = 15;
+constexpr std::uint32_t kBindings = 16;
 // The march list's header: VkDispatchIndirectCommand, then the count (epipolar_common.glsl).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
@@ -49,7 +49,7 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   return {};
 }
 
-Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
+Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
   const std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{{
@@ -68,6 +68,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
       {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
       {14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
   }};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = kBindings;
@@ -84,7 +85,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 15> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 13> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
@@ -92,11 +93,9 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
       {&treePipeline_, shaders::min_max_tree_comp()},
       {&marchArgsPipeline_, shaders::march_args_comp()},
       {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
-      {&marchPipeline_, shaders::march_comp()},
       {&interpolatePipeline_, shaders::interpolate_comp()},
       {&unwarpPipeline_, shaders::unwarp_comp()},
       {&fixupArgsPipeline_, shaders::fixup_args_comp()},
-      {&fixupPipeline_, shaders::fixup_comp()},
       {&debugBackgroundPipeline_, shaders::debug_background_comp()},
       {&debugSamplesPipeline_, shaders::debug_samples_comp()},
       {&debugFixupPipeline_, shaders::debug_fixup_comp()},
@@ -104,18 +103,23 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, std::uint32
   for (const auto& [pipeline, spirv] : pipelines) {
     if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
   }
-  // march.comp's TYN_MARCH_LOCAL_LIGHT (constant_id 0).
-  const VkBool32 local = VK_TRUE;
-  const VkSpecializationMapEntry entry{0, 0, sizeof(VkBool32)};
-  const VkSpecializationInfo localLight{1, &entry, sizeof(local), &local};
-  if (Outcome o = createComputePipeline(gpu, pipelineLayout_, shaders::march_comp(), marchLocalPipeline_, &localLight);
-      !o) {
-    return o;
+  // march.comp per light type (TYN_LIGHT_TYPE) and light-colour texture (TYN_MARCH_LIGHT_COLOR,
+  // constant_id 1); the fix-up per light type.
+  for (std::uint32_t type = 0; type < marchPipelines_.size(); ++type) {
+    for (std::uint32_t colored = 0; colored < 2; ++colored) {
+      const std::array<std::pair<std::uint32_t, std::uint32_t>, 2> constants{{{kLightTypeConstantId, type}, {1, colored}}};
+      if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::march_comp(), constants,
+                                                marchPipelines_[type][colored]);
+          !o) {
+        return o;
+      }
+    }
   }
+  if (Outcome o = createLightPipelines(gpu, pipelineLayout_, shaders::fixup_comp(), fixupPipelines_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 9},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
   }};
@@ -156,10 +160,13 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
-                              marchArgsPipeline_, refineIntensityPipeline_, marchPipeline_, marchLocalPipeline_, interpolatePipeline_, unwarpPipeline_, fixupArgsPipeline_,
-                              fixupPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_, debugFixupPipeline_}) {
+                              marchArgsPipeline_, refineIntensityPipeline_, interpolatePipeline_, unwarpPipeline_,
+                              fixupArgsPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
+                              debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
+  for (auto& pipelines : marchPipelines_) destroyPipelines(gpu, pipelines);
+  destroyPipelines(gpu, fixupPipelines_);
   if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
   if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
   *this = EpipolarTechnique{};
@@ -256,6 +263,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorBufferInfo list{fixupList_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo args{fixupArgs_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo marchList{textures_.marchList.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
 
   std::array<VkWriteDescriptorSet, kBindings> writes{};
   auto write = [&](std::size_t i, std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
@@ -278,6 +286,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   write(11, 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &sliceUv;
   write(12, 12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &tree;
   write(13, 13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &marchList;
+  write(14, 15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1).pImageInfo = &lightColor;
   // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
   const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};
   std::uint32_t count = kBindings - 1;
@@ -336,7 +345,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   }
   // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
   // refinement adds.
-  const VkPipeline march = light == LightType::Directional ? marchPipeline_ : marchLocalPipeline_;
+  const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
   auto marchRound = [&](const char* argsName, const char* name) {
     pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
     timer.beginPass(gpu, cmd, name);
@@ -365,7 +374,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   timer.beginPass(gpu, cmd, "epipolar_fixup");
   memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                 readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipeline_);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipelines_[static_cast<std::size_t>(light)]);
   gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
   timer.endPass(gpu, cmd);
   passes.emplace_back("epipolar_fixup");

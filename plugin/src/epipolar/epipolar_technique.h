@@ -24,7 +24,8 @@ class EpipolarTechnique {
  public:
   using Bindings = ScatteringBindings;
 
-  Outcome create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots);
+  /// `linear`: the light-colour texture's sampler (linear, clamp to edge).
+  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots);
   void destroy(const Gpu& gpu);
   /// The fix-up list holds every pixel: rebuilt with the output extent.
   Outcome resize(const Gpu& gpu, VkExtent2D extent);
@@ -75,12 +76,12 @@ class EpipolarTechnique {
   VkPipeline treePipeline_ = VK_NULL_HANDLE;
   VkPipeline marchArgsPipeline_ = VK_NULL_HANDLE;
   VkPipeline refineIntensityPipeline_ = VK_NULL_HANDLE;
-  VkPipeline marchPipeline_ = VK_NULL_HANDLE;       // directional light
-  VkPipeline marchLocalPipeline_ = VK_NULL_HANDLE;  // spot and point lights
+  // march.comp specialised: [light type][light-colour texture].
+  std::array<std::array<VkPipeline, 2>, 3> marchPipelines_{};
   VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
-  VkPipeline fixupPipeline_ = VK_NULL_HANDLE;
+  LightPipelines fixupPipelines_{};  // per light type
   VkPipeline debugBackgroundPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugSamplesPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugFixupPipeline_ = VK_NULL_HANDLE;

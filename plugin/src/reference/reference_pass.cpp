@@ -5,14 +5,15 @@
 
 namespace tyndall {
 
-Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
+Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
-  const std::array<VkDescriptorSetLayoutBinding, 5> bindings{{
+  const std::array<VkDescriptorSetLayoutBinding, 6> bindings{{
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
+      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, &linear},
   }};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
@@ -26,12 +27,12 @@ Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  if (Outcome o = createComputePipeline(gpu, pipelineLayout_, shaders::reference_scattering_comp(), pipeline_); !o) {
+  if (Outcome o = createLightPipelines(gpu, pipelineLayout_, shaders::reference_scattering_comp(), pipelines_); !o) {
     return o;
   }
   const std::array<VkDescriptorPoolSize, 3> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
   }};
   sets_.resize(slots);
@@ -40,7 +41,7 @@ Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
 
 void ReferencePass::destroy(const Gpu& gpu) {
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
-  if (pipeline_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline_, gpu.allocator);
+  destroyPipelines(gpu, pipelines_);
   if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
   if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
   *this = ReferencePass{};
@@ -54,6 +55,7 @@ void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
   const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);
   const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo transmittance{VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
 
   auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) {
     VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -63,18 +65,20 @@ void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
     w.descriptorType = type;
     return w;
   };
-  std::array<VkWriteDescriptorSet, 5> writes{
+  std::array<VkWriteDescriptorSet, 6> writes{
       write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1), write(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1),
       write(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps),
-      write(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1), write(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1)};
+      write(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1), write(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1),
+      write(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1)};
   writes[0].pBufferInfo = &constants;
   writes[1].pImageInfo = &depth;
   writes[2].pImageInfo = shadow.data();
   writes[3].pImageInfo = &scattering;
   writes[4].pImageInfo = &transmittance;
+  writes[5].pImageInfo = &lightColor;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<std::size_t>(b.light)]);
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
   const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
   gpu.vk.vkCmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);

@@ -13,7 +13,8 @@ class ReferencePass {
  public:
   using Bindings = ScatteringBindings;
 
-  Outcome create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots);
+  /// `linear`: the light-colour texture's sampler (linear, clamp to edge).
+  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots);
   void destroy(const Gpu& gpu);
   /// Updates the slot's descriptors and dispatches one thread per pixel.
   void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
@@ -22,7 +23,7 @@ class ReferencePass {
  private:
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
-  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  LightPipelines pipelines_{};  // per light type
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
 };

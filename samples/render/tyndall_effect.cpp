@@ -134,6 +134,7 @@ bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& i
   FrameDesc frame = makeFrameDesc(inputs, profile_, storage);
   frame.technique = technique_;
   if (epipolar_) frame.epipolar = &*epipolar_;
+  if (prefiltered_) frame.prefiltered = &*prefiltered_;
   if (Outcome outcome = context_->record(cmd, frame); !outcome) {
     error = std::string("tyndall: ") + to_string(outcome.status) + ": " + outcome.message;
     return false;

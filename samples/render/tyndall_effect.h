@@ -26,6 +26,8 @@ class TyndallEffect final : public host::PostProcessEffect {
   void setTechnique(Technique technique) { technique_ = technique; }
   /// Parameters of the epipolar technique instead of the profile's (empty: the profile's).
   void setEpipolarSettings(const std::optional<EpipolarSettings>& settings) { epipolar_ = settings; }
+  /// Parameters of the prefiltered technique instead of the profile's (empty: the profile's).
+  void setPrefilteredSettings(const std::optional<PrefilteredSettings>& settings) { prefiltered_ = settings; }
   Context& context() { return *context_; }
   /// Messages the context reported through its callback.
   const std::vector<std::string>& messages() const { return messages_; }
@@ -37,6 +39,7 @@ class TyndallEffect final : public host::PostProcessEffect {
   Profile profile_ = Profile::Balanced;
   Technique technique_ = Technique::None;
   std::optional<EpipolarSettings> epipolar_;
+  std::optional<PrefilteredSettings> prefiltered_;
   std::vector<std::string> messages_;
 };
 

@@ -231,6 +231,31 @@ TEST(Prefiltered, ProjectiveRectificationWhereTheEpipoleIsFarOffScreen) {
   expectNoValidationMessages();
 }
 
+// Reverse-Z and an infinite far plane (sky pixels integrate to the sky distance): the frustum
+// bounds, the rays' ends and the Reference agree.
+TEST(Prefiltered, DepthConventions) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  for (const bool reverse : {false, true}) {
+    for (const bool infinite : {false, true}) {
+      SCOPED_TRACE(std::string(reverse ? "reverse-Z" : "standard") + (infinite ? ", infinite far" : ""));
+      samples::RenderOptions ref = options(Technique::Reference);
+      samples::RenderOptions pre = options(Technique::Prefiltered);
+      for (samples::RenderOptions* o : {&ref, &pre}) {
+        o->depth = reverse ? host::DepthConvention::Reverse : host::DepthConvention::Standard;
+        o->infiniteFar = infinite;
+      }
+      const samples::RenderResult r = renderWithAovs(scene, ref);
+      const samples::RenderResult p = renderWithAovs(scene, pre);
+      const ErrorStats stats = compareRgb(p.scattering, r.scattering);
+      std::printf("[ analytic-spheres, %s%s ] prefiltered vs reference: %s\n", reverse ? "reverse-Z" : "standard",
+                  infinite ? ", infinite far" : "", describe(stats).c_str());
+      expectWithinBar("analytic-spheres", PrefilteredBasis::Moments6_64, stats);
+      EXPECT_EQ(compareRgb(p.transmittance, r.transmittance).relativeMax, 0.0);
+    }
+  }
+  expectNoValidationMessages();
+}
+
 // ---------------------------------------------------------------------------------------------
 // What is recorded.
 

@@ -86,17 +86,6 @@ float tyn_pf_visibility(uint set, TynPfTaps taps, float depth_ray, float beta) {
   return 1.0 - tyn_shadow_intensity(bounds, beta);
 }
 
-// Texture coordinate u along the row of reference distance τ (rectification.h: r = τ·sin θ_ref;
-// the projective map's column from x = r / √(1 + η²)).
-float tyn_pf_u_of_reference_distance(float tau, float reference_sin, float eta) {
-  float r = tau * reference_sin;
-  if (!tyn_pf_projective()) return r / pf.nonlinear.origin.w;
-  float x = r / sqrt(1.0 + eta * eta);
-  float xn = pf.projective.x_eta.x;
-  float xf = pf.projective.x_eta.y;
-  return xf * (x - xn) / ((xf - xn) * max(x, 1.0e-30));
-}
-
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, frame.extent.xy))) return;
@@ -146,7 +135,10 @@ void main() {
       for (uint k = 0u; k < tap_count; ++k) {
         vec2 tap = tyn_weight_tap(pf.set_extinction[set], kappa, tau_end, k + 1u, tap_count);
         // The last tap is the ray's end itself, where the single lookup reads.
-        float u = k + 1u == tap_count ? uvd.x : tyn_pf_u_of_reference_distance(tap.x * tau_end, reference_sin, eta);
+        float tau = tap.x * tau_end;
+        float u = k + 1u == tap_count ? uvd.x
+                  : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
+                                        : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
         taps.u[k] = tyn_prefix_lookup_u(u, columns);
         taps.c[k] = tap.y;
         sum += tap.y;

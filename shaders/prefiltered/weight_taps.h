@@ -28,6 +28,7 @@
 
 #include "common/cpp_glsl.h"
 #include "common/segment_integral.h"
+#include "prefiltered/rectification.h"
 
 TYN_BEGIN
 
@@ -81,6 +82,25 @@ TYN_FUNC vec2 tyn_weight_tap(float sigma, float kappa, float tau_end, uint k, ui
   float total = tau_end * tyn_one_minus_exp_over_x(optical_depth);
   // g decreases for κ ≥ 1; rounding may leave a difference of either sign next to κ = 1.
   return vec2(fraction, max(w * (g - g_next), 0.0f) / total);
+}
+
+// Where a tap at reference distance τ reads along its row. Both rectifications measure distance
+// from the camera's light ray: the reference ray is at r = τ·sin θ_ref there (rectification.h,
+// "Per-slice sample spacing"), and so is every ray of the row at its own t = κ τ.
+// Non-linear map: u = r / r_max.
+TYN_FUNC float tyn_weight_tap_u_nonlinear(float tau, float reference_sin, float r_max) {
+  return tau * reference_sin / r_max;
+}
+
+// Projective map: the column of light-frame x = r / √(1 + η²) (η = y/x of the row), the inverse of
+// tyn_projective_x: u = x_f (x − x_n) / ((x_f − x_n) x). Below x_n (between the camera and the
+// frustum's nearest corner) u < 0, which the lookup clamps to the first column.
+TYN_FUNC float tyn_weight_tap_u_projective(ProjectiveRectificationParams proj, float tau, float reference_sin,
+                                           float eta) {
+  float x = tau * reference_sin / sqrt(1.0f + eta * eta);
+  float xn = proj.x_eta.x;
+  float xf = proj.x_eta.y;
+  return xf * (x - xn) / ((xf - xn) * max(x, 1.0e-30f));
 }
 
 TYN_END

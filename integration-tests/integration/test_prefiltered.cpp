@@ -530,5 +530,47 @@ TEST(Prefiltered, SettingsChangeBetweenFramesInFlight) {
   expectNoValidationMessages();
 }
 
+// tyndall-render --technique prefiltered --prefiltered KEY=VALUE,…: every key reaches its field;
+// unknown keys and malformed values fail with a line naming them (ranges are the plugin's to check).
+TEST(Prefiltered, CommandLineSettings) {
+  auto parse = [](std::vector<const char*> args, samples::RenderOptions& options, std::string& error) {
+    args.insert(args.begin(), "tyndall-render");
+    bool help = false;
+    return samples::parseCommandLine(static_cast<int>(args.size()), args.data(), options, help, error);
+  };
+  samples::RenderOptions o;
+  std::string error;
+  ASSERT_TRUE(parse({"scene.json", "--technique", "prefiltered", "--prefiltered",
+                     "basis=fourier32,rectification=projective,rows=64,columns=128,filtered=0,spacing=mean-theta,"
+                     "taps=1,prefix-sums=thread-per-row,beta=0.25,epipole-block=0"},
+                    o, error))
+      << error;
+  EXPECT_EQ(o.technique, Technique::Prefiltered);
+  ASSERT_TRUE(o.prefiltered.has_value());
+  const PrefilteredSettings& s = *o.prefiltered;
+  EXPECT_EQ(s.basis, PrefilteredBasis::Fourier32);
+  EXPECT_EQ(s.rectification, PrefilteredRectification::Projective);
+  EXPECT_EQ(s.rows, 64u);
+  EXPECT_EQ(s.columns, 128u);
+  EXPECT_FALSE(s.filteredResampling);
+  EXPECT_EQ(s.spacing, PrefilteredSpacing::MeanTheta);
+  EXPECT_EQ(s.rayWeightTaps, 1u);
+  EXPECT_EQ(s.prefixSums, PrefixSumScheme::ThreadPerRow);
+  EXPECT_FALSE(s.adaptiveOverestimation);
+  EXPECT_EQ(s.overestimation, 0.25f);
+  EXPECT_EQ(s.epipoleBlockPixels, 0u);
+
+  samples::RenderOptions adaptive;
+  ASSERT_TRUE(parse({"scene.json", "--prefiltered", "beta=adaptive"}, adaptive, error)) << error;
+  EXPECT_TRUE(adaptive.prefiltered->adaptiveOverestimation);
+
+  for (const char* bad : {"bases=moments6_64", "basis=moments8", "rows=many", "beta=", "spacing=median"}) {
+    samples::RenderOptions b;
+    error.clear();
+    EXPECT_FALSE(parse({"scene.json", "--prefiltered", bad}, b, error)) << bad;
+    EXPECT_EQ(error.rfind("--prefiltered: ", 0), 0u) << error;
+  }
+}
+
 }  // namespace
 }  // namespace tyndall::test

@@ -35,10 +35,10 @@ TYN_CONST uint TYN_PF_TEXEL_GROUP = 8u;
 TYN_CONST uint TYN_PF_MAX_SETS = 3u;
 
 // A depth the filtered resampling reconstructs within this of the host map's clear value 1 is
-// "no occluder" (the clear value itself is exact in the unfiltered path). Algorithm 2 on the
-// 16-bit moments of a texel at 1 returns depths within ~1e-4 of it; a real occluder this close to
-// the host's far plane could only shadow points behind it, below the geometry the map was fitted
-// to (DESIGN.md: the host fits the map around every occluder).
+// "no occluder" (the clear value itself is exact in the unfiltered path): an allowance for the
+// rounding of the 16-bit moments Algorithm 2 starts from. A real occluder this close to the host's
+// far plane could only shadow points behind it, below the geometry the map was fitted to
+// (DESIGN.md: the host fits the map around every occluder).
 TYN_CONST float TYN_PF_CLEAR_DEPTH_TOLERANCE = 1.0e-3f;
 
 struct PrefilteredConstants {

@@ -90,7 +90,7 @@ void discardToGeneral(const Gpu& gpu, VkCommandBuffer cmd, std::initializer_list
                               static_cast<std::uint32_t>(barriers.size()), barriers.data());
 }
 
-std::string format(const char* fmt, double value) {
+std::string printed(const char* fmt, double value) {
   char text[64];
   std::snprintf(text, sizeof(text), fmt, value);
   return text;
@@ -328,7 +328,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   const prefiltered::ProjectiveRectification proj = prefiltered::computeProjectiveRectification(frustum, rect);
   bool projective = false;
   std::string rectNote;
-  const std::string stretch = proj.constructible ? format("%.2f", proj.texelStretch) : std::string("inf");
+  const std::string stretch = proj.constructible ? printed("%.2f", proj.texelStretch) : std::string("inf");
   switch (settings.rectification) {
     case PrefilteredRectification::Automatic:
       projective = prefiltered::useProjectiveRectification(proj);
@@ -363,7 +363,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
     extinctionNote = extinction.distinctChannels == 1
                          ? "grey extinction"
                          : "one grey extinction for the prefix weights (visibility error <= " +
-                               format("%.4f", extinction.greyMaxError) + ")";
+                               printed("%.4f", extinction.greyMaxError) + ")";
   } else {
     sets = 0;
     for (int c = 0; c < 3; ++c) {
@@ -375,7 +375,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
       k.channel_set[c] = set;
     }
     extinctionNote = std::to_string(sets) + " prefix-sum sets, one per extinction (grey would err by " +
-                     format("%.3f", extinction.greyMaxError) + ")";
+                     printed("%.3f", extinction.greyMaxError) + ")";
   }
 
   // The epipole and its block (on screen: the CPU records the passes, the GPU sizes them).

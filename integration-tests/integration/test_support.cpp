@@ -1,7 +1,11 @@
 #include "test_support.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <memory>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace tyndall::test {
 
@@ -52,6 +56,27 @@ ErrorStats compareRgb(const host::ImageRgba32f& measured, const host::ImageRgba3
   EXPECT_EQ(reference.pixels.size(), pixels * 4);
   if (reference.pixels.size() != pixels * 4) return {};
   return samples::compareRgb(measured, reference, mask);
+}
+
+host::Scene withEpipoleAt(host::Scene scene, glm::dvec2 ndc, bool behind, std::uint32_t width, std::uint32_t height) {
+  const glm::dvec3 toLight = (behind ? 1.0 : -1.0) * glm::normalize(scene.light.direction);
+  const double tanHalf = std::tan(glm::radians(scene.camera.fovYDegrees) * 0.5);
+  const double aspect = double(width) / height;
+  // The light's direction in camera space (x right, y up, looking down −z).
+  const glm::dvec3 c = glm::normalize(glm::dvec3(ndc.x * tanHalf * aspect, -ndc.y * tanHalf, -1.0));
+  // A camera looking straight at the light, then turned so that the light lands on c.
+  const glm::dvec3 worldUp = std::abs(toLight.y) > 0.99 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 r0 = glm::normalize(glm::cross(toLight, worldUp));
+  const glm::dvec3 u0 = glm::cross(r0, toLight);
+  const glm::dmat3 lookingAtLight(r0, u0, -toLight);
+  const glm::dvec3 axis = glm::cross(c, glm::dvec3(0, 0, -1));
+  const double angle = std::acos(std::clamp(glm::dot(c, glm::dvec3(0, 0, -1)), -1.0, 1.0));
+  glm::dmat3 turn(1.0);
+  if (glm::length(axis) > 1e-12) turn = glm::dmat3(glm::rotate(glm::dmat4(1.0), angle, glm::normalize(axis)));
+  const glm::dmat3 cameraToWorld = lookingAtLight * turn;
+  scene.camera.target = scene.camera.position + cameraToWorld * glm::dvec3(0, 0, -1);
+  scene.camera.up = cameraToWorld * glm::dvec3(0, 1, 0);
+  return scene;
 }
 
 samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOptions options) {

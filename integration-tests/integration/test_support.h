@@ -32,6 +32,12 @@ ErrorStats compareRgb(const host::ImageRgba32f& measured, const std::vector<doub
 ErrorStats compareRgb(const host::ImageRgba32f& measured, const host::ImageRgba32f& reference,
                       const std::vector<unsigned char>* mask = nullptr);
 
+/// Turns the scene's camera so that the light (where its light comes from) appears at `ndc` (Vulkan
+/// NDC, y down; beyond ±1 is off screen) of a `width`×`height` image, or, with `behind`, so that the
+/// light is behind the camera and its mirrored epipole appears there. (The construction of
+/// test_epipolar.cpp's placements, shared.)
+host::Scene withEpipoleAt(host::Scene scene, glm::dvec2 ndc, bool behind, std::uint32_t width, std::uint32_t height);
+
 /// Renders `frames` frames with the options' profile and reads the AOVs back.
 samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOptions options);
 

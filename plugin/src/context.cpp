@@ -9,6 +9,7 @@
 #include "epipolar/min_max_tree.h"
 #include "frame_setup.h"
 #include "gpu.h"
+#include "prefiltered/prefiltered_technique.h"
 #include "profiles.h"
 #include "reference/reference_pass.h"
 #include "timing.h"
@@ -110,6 +111,7 @@ struct Context::Impl {
   GpuTimer timer;
   ReferencePass reference;
   EpipolarTechnique epipolar;
+  PrefilteredTechnique prefiltered;
   CompositePass composite;
   // Size-dependent.
   OwnedImage scattering;
@@ -165,6 +167,7 @@ Outcome Context::Impl::createSizeIndependent() {
   stats.timestampsSupported = timer.supported();
   if (Outcome o = reference.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = epipolar.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
+  if (Outcome o = prefiltered.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
   if (desc.backBufferFormat != VK_FORMAT_UNDEFINED) {
     if ((gpu.optimalFeatures(desc.backBufferFormat) & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) == 0) {
@@ -192,6 +195,7 @@ void Context::Impl::destroyAll() {
   if (gpu.device == VK_NULL_HANDLE) return;
   destroySizeDependent();
   composite.destroy(gpu);
+  prefiltered.destroy(gpu);
   epipolar.destroy(gpu);
   reference.destroy(gpu);
   timer.destroy(gpu);
@@ -318,6 +322,17 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
                                                               to_string(frame.technique)
                                                         : std::string(choice.note);
   const EpipolarSettings& epipolarSettings = frame.epipolar != nullptr ? *frame.epipolar : choice.epipolar;
+  if (technique == Technique::Prefiltered && frame.light.type != LightType::Directional) {
+    // Rectified shadow maps are built for directional lights only (a design fallback, DESIGN.md
+    // "Model only what the scene requires"; docs/PREFILTERED.md).
+    technique = Technique::Epipolar;
+    note += "; prefiltered supports directional lights only: epipolar instead";
+  } else if (technique == Technique::Prefiltered && !frame.lightColor.empty()) {
+    // A light-colour texture varies along the light rays a rectified texel averages over (a
+    // design fallback, like the one above).
+    technique = Technique::Epipolar;
+    note += "; prefiltered has no light-colour texture: epipolar instead";
+  }
   if (technique == Technique::Epipolar && (extent.width < 2 || extent.height < 2)) {
     // Epipolar lines need a screen at least two pixels wide and high (a design fallback).
     technique = Technique::Reference;
@@ -339,6 +354,15 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     note += epipolarMarchNote(epipolarK, epipolarSettings);
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, stats.frameIndex, desc.maxFramesInFlight);
+        !o) {
+      return fail(o);
+    }
+  }
+
+  if (technique == Technique::Prefiltered && setup.attenuates) {
+    const PrefilteredSettings& settings = frame.prefiltered != nullptr ? *frame.prefiltered : choice.prefiltered;
+    if (Outcome o = prefiltered.prepare(gpu, frame, settings, setup.scatters, extent, slot, stats.frameIndex,
+                                        desc.maxFramesInFlight, note);
         !o) {
       return fail(o);
     }
@@ -447,6 +471,8 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     reference.record(gpu, cmd, slot, bindings, extent);
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back("reference_scattering");
+  } else if (technique == Technique::Prefiltered) {
+    prefiltered.record(gpu, cmd, slot, bindings, extent, timer, stats.passesRecorded);
   } else {
     epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, frame.light.type, extent, timer,
                     stats.passesRecorded);

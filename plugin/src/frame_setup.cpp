@@ -6,6 +6,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "epipolar/epipolar_technique.h"
+#include "prefiltered/prefiltered_technique.h"
 
 namespace tyndall {
 
@@ -146,11 +147,14 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   if (!std::isfinite(frame.autoBudgetMilliseconds) || frame.autoBudgetMilliseconds <= 0.0f) {
     return invalid("autoBudgetMilliseconds must be finite and > 0");
   }
-  if (static_cast<std::uint32_t>(frame.technique) > static_cast<std::uint32_t>(Technique::Epipolar)) {
+  if (static_cast<std::uint32_t>(frame.technique) > static_cast<std::uint32_t>(Technique::Prefiltered)) {
     return invalid("technique is not a Technique");
   }
   if (frame.epipolar != nullptr) {
     if (Outcome o = validateEpipolarSettings(*frame.epipolar); !o) return o;
+  }
+  if (frame.prefiltered != nullptr) {
+    if (Outcome o = validatePrefilteredSettings(*frame.prefiltered); !o) return o;
   }
 
   // Camera.

@@ -87,6 +87,41 @@ Outcome createImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, VkImageU
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateImageView", result);
 }
 
+Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers,
+                         VkImageUsageFlags usage, OwnedImage& out) {
+  out.format = format;
+  out.extent = extent;
+  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+  info.imageType = VK_IMAGE_TYPE_2D;
+  info.format = format;
+  info.extent = {extent.width, extent.height, 1};
+  info.mipLevels = 1;
+  info.arrayLayers = layers;
+  info.samples = VK_SAMPLE_COUNT_1_BIT;
+  info.tiling = VK_IMAGE_TILING_OPTIMAL;
+  info.usage = usage;
+  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkResult result = gpu.vk.vkCreateImage(gpu.device, &info, gpu.allocator, &out.image);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateImage", result);
+
+  VkMemoryRequirements requirements{};
+  gpu.vk.vkGetImageMemoryRequirements(gpu.device, out.image, &requirements);
+  Outcome outcome = allocate(gpu, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, out.memory);
+  if (!outcome) return outcome;
+  out.bytes = requirements.size;
+  result = gpu.vk.vkBindImageMemory(gpu.device, out.image, out.memory, 0);
+  if (result != VK_SUCCESS) return vkFailed("vkBindImageMemory", result);
+
+  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+  view.image = out.image;
+  view.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  view.format = format;
+  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
+  result = gpu.vk.vkCreateImageView(gpu.device, &view, gpu.allocator, &out.view);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateImageView", result);
+}
+
 void destroyImage(const Gpu& gpu, OwnedImage& image) {
   if (image.view != VK_NULL_HANDLE) gpu.vk.vkDestroyImageView(gpu.device, image.view, gpu.allocator);
   if (image.image != VK_NULL_HANDLE) gpu.vk.vkDestroyImage(gpu.device, image.image, gpu.allocator);

@@ -41,6 +41,9 @@ struct OwnedImage {
 };
 Outcome createImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, VkImageUsageFlags usage,
                     OwnedImage& out);
+/// The same with `layers` array layers and a 2D_ARRAY view of all of them.
+Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers,
+                         VkImageUsageFlags usage, OwnedImage& out);
 void destroyImage(const Gpu& gpu, OwnedImage& image);
 
 /// A persistently mapped, host-coherent buffer (per-frame constants).

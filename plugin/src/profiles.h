@@ -14,6 +14,8 @@ struct ProfileChoice {
   const char* note;
   /// Parameters when the technique is Epipolar.
   EpipolarSettings epipolar;
+  /// Parameters when the technique is Prefiltered.
+  PrefilteredSettings prefiltered{};
 };
 
 /// The row for a profile (Auto resolves like the others until it has measurements to use).

@@ -29,6 +29,7 @@ const char* to_string(Technique technique) noexcept {
     case Technique::None: return "none";
     case Technique::Reference: return "reference";
     case Technique::Epipolar: return "epipolar";
+    case Technique::Prefiltered: return "prefiltered";
   }
   return "unknown";
 }

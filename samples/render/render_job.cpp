@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -91,6 +92,72 @@ bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::
   return true;
 }
 
+// --prefiltered KEY=VALUE[,KEY=VALUE…] over PrefilteredSettings' defaults; as for --epipolar, the
+// plugin checks the ranges, this only the syntax and the names of the enumerations.
+bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out, std::string& error) {
+  PrefilteredSettings s;
+  const auto pick = [](const std::string& value, std::initializer_list<const char*> names, auto& field) {
+    std::uint32_t index = 0;
+    for (const char* name : names) {
+      if (value == name) {
+        field = static_cast<std::remove_reference_t<decltype(field)>>(index);
+        return true;
+      }
+      ++index;
+    }
+    return false;
+  };
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string item = text.substr(begin, end - begin);
+    const std::size_t eq = item.find('=');
+    const std::string key = item.substr(0, eq);
+    const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
+    std::uint32_t u = 0;
+    bool ok = false;
+    if (key == "basis") {
+      ok = pick(value, {"moments4_64", "moments4_128", "moments6_64", "moments6_96", "moments6_192", "fourier32"}, s.basis);
+    } else if (key == "rectification") {
+      ok = pick(value, {"automatic", "non-linear", "projective"}, s.rectification);
+    } else if (key == "rows") {
+      ok = parseUint(value, 0, 1u << 30, s.rows);
+    } else if (key == "columns") {
+      ok = parseUint(value, 0, 1u << 30, s.columns);
+    } else if (key == "filtered") {
+      ok = parseUint(value, 0, 1, u);
+      s.filteredResampling = u != 0;
+    } else if (key == "spacing") {
+      ok = pick(value, {"mean-theta", "reference-ray", "fastest-ray"}, s.spacing);
+    } else if (key == "taps") {
+      ok = parseUint(value, 0, 1u << 30, s.rayWeightTaps);
+    } else if (key == "prefix-sums") {
+      ok = pick(value, {"row-parallel", "thread-per-row"}, s.prefixSums);
+    } else if (key == "beta") {
+      if (value == "adaptive") {
+        s.adaptiveOverestimation = true;
+        ok = true;
+      } else {
+        s.adaptiveOverestimation = false;
+        ok = parseFloat(value, s.overestimation);
+      }
+    } else if (key == "epipole-block") {
+      ok = parseUint(value, 0, 1u << 30, s.epipoleBlockPixels);
+    } else {
+      error = "--prefiltered: unknown key '" + key +
+              "' (keys: basis, rectification, rows, columns, filtered, spacing, taps, prefix-sums, beta, epipole-block)";
+      return false;
+    }
+    if (!ok) {
+      error = "--prefiltered: bad value for " + key + " (got '" + value + "')";
+      return false;
+    }
+    begin = end + 1;
+  }
+  out = s;
+  return true;
+}
+
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -102,15 +169,21 @@ double median(std::vector<double> values) {
 
 std::string usage() {
   return "usage: tyndall-render SCENE.json [--profile reference|high|balanced|performance|auto]\n"
-         "         [--technique reference|epipolar] [--width W] [--height H] [--shadow-map-size N]\n"
+         "         [--technique reference|epipolar|prefiltered] [--width W] [--height H] [--shadow-map-size N]\n"
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
-         "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--debug-view samples|fixup FILE.png]\n"
+         "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--prefiltered KEY=VALUE[,KEY=VALUE...]]\n"
+         "         [--debug-view samples|fixup FILE.png]\n"
          "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
          "    slices, samples, initial-step, refinement, intensity-refinement, density, improved-placement (0|1),\n"
          "    tree (0|1),"
-         "    max-tree-step, bilateral, fixup-weight, epipole-radius\n";
+         "    max-tree-step, bilateral, fixup-weight, epipole-radius\n"
+         "  --prefiltered sets the prefiltered technique's parameters (the rest keep PrefilteredSettings' defaults):\n"
+         "    basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32),\n"
+         "    rectification (automatic|non-linear|projective), rows, columns, filtered (0|1),\n"
+         "    spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row),\n"
+         "    beta (adaptive|a number in [0, 1]), epipole-block\n";
 }
 
 bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options, bool& help, std::string& error) {
@@ -142,8 +215,10 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
         options.technique = Technique::Reference;
       } else if (v == "epipolar") {
         options.technique = Technique::Epipolar;
+      } else if (v == "prefiltered") {
+        options.technique = Technique::Prefiltered;
       } else {
-        error = "--technique must be one of: reference, epipolar (got '" + v + "')";
+        error = "--technique must be one of: reference, epipolar, prefiltered (got '" + v + "')";
         return false;
       }
     } else if (arg == "--width" || arg == "--height") {
@@ -197,6 +272,11 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
         return false;
       }
       if (!value(options.debugViewPng)) return false;
+    } else if (arg == "--prefiltered") {
+      if (!value(v)) return false;
+      PrefilteredSettings settings;
+      if (!parsePrefilteredSettings(v, settings, error)) return false;
+      options.prefiltered = settings;
     } else if (arg == "--no-effect") {
       options.noEffect = true;
     } else if (!arg.empty() && arg[0] == '-') {
@@ -239,6 +319,7 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
     effect->setTechnique(options.technique);
     effect->setEpipolarSettings(options.epipolar);
     effect->setDebugView(options.debugView);
+    effect->setPrefilteredSettings(options.prefiltered);
     renderer->addPostProcess(effect.get());
   }
 

@@ -139,6 +139,7 @@ bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& i
     frame.debugView = debugView_;
     frame.debugOutput = toImageRef(inputs.aovDebug);
   }
+  if (prefiltered_) frame.prefiltered = &*prefiltered_;
   if (Outcome outcome = context_->record(cmd, frame); !outcome) {
     error = std::string("tyndall: ") + to_string(outcome.status) + ": " + outcome.message;
     return false;

@@ -28,6 +28,8 @@ class TyndallEffect final : public host::PostProcessEffect {
   void setEpipolarSettings(const std::optional<EpipolarSettings>& settings) { epipolar_ = settings; }
   /// A debug view into the host's debug AOV (needs RenderSettings::aovImages).
   void setDebugView(DebugView view) { debugView_ = view; }
+  /// Parameters of the prefiltered technique instead of the profile's (empty: the profile's).
+  void setPrefilteredSettings(const std::optional<PrefilteredSettings>& settings) { prefiltered_ = settings; }
   Context& context() { return *context_; }
   /// Messages the context reported through its callback.
   const std::vector<std::string>& messages() const { return messages_; }
@@ -40,6 +42,7 @@ class TyndallEffect final : public host::PostProcessEffect {
   Technique technique_ = Technique::None;
   std::optional<EpipolarSettings> epipolar_;
   DebugView debugView_ = DebugView::None;
+  std::optional<PrefilteredSettings> prefiltered_;
   std::vector<std::string> messages_;
 };
 

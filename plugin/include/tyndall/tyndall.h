@@ -69,6 +69,10 @@ enum class Technique : std::uint32_t {
   None,       ///< nothing recorded (nothing to compute), or: no override
   Reference,  ///< brute force per pixel
   Epipolar,   ///< epipolar sampling (engelhardt2010, yusov2013): samples along epipolar lines, unwarped
+  /// Prefiltered single scattering (klehm2014, peters2017): one lookup per pixel in transmittance-
+  /// weighted prefix sums over a rectified shadow map. Directional lights only: a frame with a spot
+  /// or point light runs Epipolar instead, and Stats::techniqueNote says so.
+  Prefiltered,
 };
 
 /// Parameters of the epipolar technique. Every field is validated per frame.
@@ -113,8 +117,82 @@ enum class DebugView : std::uint32_t {
   FixedUpPixels,    ///< the pixels the epipolar fix-up pass ray-marched, red
 };
 
+/// How a prefiltered shadow map represents the visibility along a light ray (docs/PREFILTERED.md
+/// has the memory and accuracy of each). Moments are those of the signed rectified depth, with
+/// peters2017's quantization and worst-case bias per variant.
+enum class PrefilteredBasis : std::uint32_t {
+  Moments4_64,   ///< 4 moments, RGBA16_UNORM with the sparse quantization Θ4* (peters2017 §2.4)
+  Moments4_128,  ///< 4 moments, RGBA32F
+  Moments6_64,   ///< 6 moments, two A2B10G10R10_UNORM textures with Θ6* (peters2017 §5.4.3)
+  Moments6_96,   ///< 6 moments, RGBA16_UNORM + RG16_UNORM with Θ6*
+  Moments6_192,  ///< 6 moments, RGBA32F + RG32F
+  Fourier32,     ///< klehm2014's 32 Fourier coefficients, an 8-layer RGBA8 array (the baseline)
+};
+
+/// Which rectified shadow map rows are built in.
+enum class PrefilteredRectification : std::uint32_t {
+  /// Projective where klehm2014's matrix keeps every texel within twice the non-linear one's
+  /// angle (the epipole well off screen), non-linear otherwise; the stats' note says which ran.
+  Automatic,
+  NonLinear,   ///< peters2017 §5.1.1: (r, φ, θ), valid for every view
+  /// klehm2014 §4.2, one matrix; a frame whose frustum contains the light axis (either way)
+  /// cannot use it and runs NonLinear, and the note says so.
+  Projective,
+};
+
+/// The world distance per texel Δ(v) the transmittance weights of a row assume: that of one
+/// reference ray of the slice. A pixel's ray crosses the row's texels at its own pace; with
+/// `PrefilteredSettings::rayWeightTaps` = 1 it takes the reference's weights as they are.
+enum class PrefilteredSpacing : std::uint32_t {
+  MeanTheta,     ///< peters2017 §5.1.1: the inclination halfway through the slice's range
+  ReferenceRay,  ///< klehm2014 §3.2: the bisectrix of the slice's smallest and largest Δ
+  /// The slice's fastest ray (klehm2014's ω_min, the smallest Δ), from which every ray of the
+  /// slice is re-weighted with non-negative coefficients: needed by rayWeightTaps > 1.
+  FastestRay,
+};
+
+/// How the prefix sums along each row are computed (same result, different cost).
+enum class PrefixSumScheme : std::uint32_t {
+  RowParallel,   ///< peters2017 Appendix C: 8 threads per row, each writes every 8th texel (coalesced)
+  ThreadPerRow,  ///< klehm2014 §3.3: one thread walks a row
+};
+
+/// Parameters of the prefiltered technique. Every field is validated per frame; the message of an
+/// invalid one names it.
+struct PrefilteredSettings {
+  PrefilteredBasis basis = PrefilteredBasis::Moments6_64;  ///< default: peters2017 §5.5.3's recommendation
+  PrefilteredRectification rectification = PrefilteredRectification::Automatic;
+  /// Rectified map rows (epipolar slices), 16..4096, default 1024.
+  std::uint32_t rows = 1024;
+  /// Rectified map columns (texels along every view ray of a slice), 16..4096, default 1024.
+  std::uint32_t columns = 1024;
+  /// Resample a moment shadow map built from the host's with bilinear filtering and peters2017's
+  /// Algorithm 2 (two depths per texel) instead of one nearest texel: shafts from straight
+  /// silhouettes do not alias. Default true.
+  bool filteredResampling = true;
+  PrefilteredSpacing spacing = PrefilteredSpacing::FastestRay;
+  /// Prefix-sum lookups per pixel and prefix-sum set, 1..8, default 4. 1: the papers' single
+  /// lookup with the reference ray's weights. K > 1: K lookups along the pixel's row re-weight the
+  /// prefix sums to the pixel's own ray (its transmittance falls faster than the reference's when
+  /// it runs closer to the light direction; docs/PREFILTERED.md); needs spacing = FastestRay.
+  std::uint32_t rayWeightTaps = 4;
+  PrefixSumScheme prefixSums = PrefixSumScheme::RowParallel;
+  /// Moment bases: where the shadow intensity is taken between the sharp lower bound (β = 1,
+  /// scattering overestimated) and upper bound (β = 0). true: peters2017 §5.3.1's adaptive
+  /// β = (1 + ω_l·ω_p)/2, 0 looking into the light, 1 looking away from it. false: the constant
+  /// `overestimation`. Default false: the constant ½ measured lower errors (docs/PREFILTERED.md).
+  bool adaptiveOverestimation = false;
+  /// β when not adaptive, [0, 1], default 0.5 (the smallest worst-case error, peters2017 §5.3.1).
+  float overestimation = 0.5f;
+  /// Side in pixels of the block around an on-screen epipole (the projected light, or where the
+  /// shafts converge when it is behind the camera) that is ray-marched per pixel with the
+  /// Reference's walk instead (klehm2014 Fig. 8). 0..256, default 16; 0 turns the block off.
+  std::uint32_t epipoleBlockPixels = 16;
+};
+
 const char* to_string(Profile profile) noexcept;
 const char* to_string(Technique technique) noexcept;
+const char* to_string(PrefilteredBasis basis) noexcept;
 
 // ---------------------------------------------------------------------------------------------
 // Context creation
@@ -262,6 +340,9 @@ struct FrameDesc {
   /// Optional: parameters of the epipolar technique instead of the profile's. Read during
   /// `record` only.
   const EpipolarSettings* epipolar = nullptr;
+  /// Optional: parameters of the prefiltered technique instead of the profile's. Read during
+  /// `record` only.
+  const PrefilteredSettings* prefiltered = nullptr;
 };
 
 // ---------------------------------------------------------------------------------------------

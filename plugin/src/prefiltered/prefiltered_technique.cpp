@@ -1,0 +1,541 @@
+#include "prefiltered/prefiltered_technique.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "epipolar/epipolar_geometry.h"
+#include "prefiltered/rectification_setup.h"
+#include "prefiltered/weight_taps.h"
+#include "tyndall_shaders.h"
+
+namespace tyndall {
+
+static_assert(static_cast<std::uint32_t>(PrefilteredBasis::Moments4_64) == gpu::TYN_PF_MOMENTS4_64);
+static_assert(static_cast<std::uint32_t>(PrefilteredBasis::Moments4_128) == gpu::TYN_PF_MOMENTS4_128);
+static_assert(static_cast<std::uint32_t>(PrefilteredBasis::Moments6_64) == gpu::TYN_PF_MOMENTS6_64);
+static_assert(static_cast<std::uint32_t>(PrefilteredBasis::Moments6_96) == gpu::TYN_PF_MOMENTS6_96);
+static_assert(static_cast<std::uint32_t>(PrefilteredBasis::Moments6_192) == gpu::TYN_PF_MOMENTS6_192);
+static_assert(static_cast<std::uint32_t>(PrefilteredBasis::Fourier32) == gpu::TYN_PF_FOURIER32);
+static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::MeanTheta) == gpu::TYN_PF_SPACING_MEAN_THETA);
+static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::ReferenceRay) == gpu::TYN_PF_SPACING_REFERENCE_RAY);
+static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::FastestRay) == gpu::TYN_PF_SPACING_FASTEST_RAY);
+static_assert(sizeof(gpu::PrefilteredConstants) == 9 * 16 + (64 + 2 * 16) + 7 * 16,
+              "PrefilteredConstants must match its std140 layout");
+static_assert(sizeof(gpu::PrefilteredFixupArgs) == 32);
+
+namespace {
+
+constexpr std::uint32_t kBindings = 18;
+constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+constexpr VkImageUsageFlags kMapUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
+// The moment shadow map of the filtered resampling: Θ4* in 16-bit UNORM (peters2017 D.1), which
+// every Vulkan device can filter linearly.
+constexpr VkFormat kMomentMapFormat = VK_FORMAT_R16G16B16A16_UNORM;
+
+// The storage variants' images, as shaders/prefiltered/storage_variants.glsl declares them.
+struct Storage {
+  const char* name;
+  VkFormat a;
+  std::uint32_t layersA;
+  VkFormat b;  // VK_FORMAT_UNDEFINED: one image
+  std::span<const std::uint32_t> (*rectify)();
+  std::span<const std::uint32_t> (*prefixSums)();
+};
+const std::array<Storage, 6> kStorage{{
+    {"moments4_64", VK_FORMAT_R16G16B16A16_UNORM, 1, VK_FORMAT_UNDEFINED, shaders::rectify_moments4_64_comp,
+     shaders::prefix_sums_moments4_64_comp},
+    {"moments4_128", VK_FORMAT_R32G32B32A32_SFLOAT, 1, VK_FORMAT_UNDEFINED, shaders::rectify_moments4_128_comp,
+     shaders::prefix_sums_moments4_128_comp},
+    {"moments6_64", VK_FORMAT_A2B10G10R10_UNORM_PACK32, 2, VK_FORMAT_UNDEFINED, shaders::rectify_moments6_64_comp,
+     shaders::prefix_sums_moments6_64_comp},
+    {"moments6_96", VK_FORMAT_R16G16B16A16_UNORM, 1, VK_FORMAT_R16G16_UNORM, shaders::rectify_moments6_96_comp,
+     shaders::prefix_sums_moments6_96_comp},
+    {"moments6_192", VK_FORMAT_R32G32B32A32_SFLOAT, 1, VK_FORMAT_R32G32_SFLOAT, shaders::rectify_moments6_192_comp,
+     shaders::prefix_sums_moments6_192_comp},
+    {"fourier32", VK_FORMAT_R8G8B8A8_UNORM, gpu::TYN_FOURIER_LAYERS, VK_FORMAT_UNDEFINED,
+     shaders::rectify_fourier32_comp, shaders::prefix_sums_fourier32_comp},
+}};
+
+std::uint32_t slotsOf(const Storage& s) { return s.layersA + (s.b != VK_FORMAT_UNDEFINED ? 1u : 0u); }
+
+std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
+
+bool usable(const Gpu& gpu, VkFormat format) {
+  const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                      VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT;
+  return (gpu.optimalFeatures(format) & needed) == needed;
+}
+
+// Whole-image (every layer) transition that discards the contents: the maps are rewritten every
+// frame, and the previous frame's compute reads must be done first.
+void discardToGeneral(const Gpu& gpu, VkCommandBuffer cmd, std::initializer_list<const OwnedImage*> images) {
+  std::vector<VkImageMemoryBarrier> barriers;
+  for (const OwnedImage* image : images) {
+    if (image->image == VK_NULL_HANDLE) continue;
+    VkImageMemoryBarrier b{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+    b.srcAccessMask = 0;
+    b.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    b.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    b.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image->image;
+    b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
+    barriers.push_back(b);
+  }
+  gpu.vk.vkCmdPipelineBarrier(cmd, kCompute, kCompute, 0, 0, nullptr, 0, nullptr,
+                              static_cast<std::uint32_t>(barriers.size()), barriers.data());
+}
+
+std::string printed(const char* fmt, double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), fmt, value);
+  return text;
+}
+
+}  // namespace
+
+const char* to_string(PrefilteredBasis basis) noexcept {
+  const auto i = static_cast<std::uint32_t>(basis);
+  return i < kStorage.size() ? kStorage[i].name : "unknown";
+}
+
+Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
+  auto invalid = [](const char* message) { return failure(Status::InvalidArgument, message); };
+  if (static_cast<std::uint32_t>(s.basis) > static_cast<std::uint32_t>(PrefilteredBasis::Fourier32)) {
+    return invalid("prefiltered.basis is not a PrefilteredBasis");
+  }
+  if (static_cast<std::uint32_t>(s.rectification) > static_cast<std::uint32_t>(PrefilteredRectification::Projective)) {
+    return invalid("prefiltered.rectification is not a PrefilteredRectification");
+  }
+  if (s.rows < 16 || s.rows > 4096) return invalid("prefiltered.rows must be in 16..4096");
+  if (s.columns < 16 || s.columns > 4096) return invalid("prefiltered.columns must be in 16..4096");
+  if (static_cast<std::uint32_t>(s.spacing) > static_cast<std::uint32_t>(PrefilteredSpacing::FastestRay)) {
+    return invalid("prefiltered.spacing is not a PrefilteredSpacing");
+  }
+  if (s.rayWeightTaps < 1 || s.rayWeightTaps > gpu::TYN_PF_MAX_TAPS) return invalid("prefiltered.rayWeightTaps must be in 1..8");
+  if (s.rayWeightTaps > 1 && s.spacing != PrefilteredSpacing::FastestRay) {
+    return invalid("prefiltered.rayWeightTaps > 1 needs prefiltered.spacing = FastestRay (the re-weighting is "
+                   "non-negative only from the slice's fastest ray)");
+  }
+  if (static_cast<std::uint32_t>(s.prefixSums) > static_cast<std::uint32_t>(PrefixSumScheme::ThreadPerRow)) {
+    return invalid("prefiltered.prefixSums is not a PrefixSumScheme");
+  }
+  if (!(s.overestimation >= 0.0f && s.overestimation <= 1.0f)) return invalid("prefiltered.overestimation must be in [0, 1]");
+  if (s.epipoleBlockPixels > 256) return invalid("prefiltered.epipoleBlockPixels must be in 0..256");
+  return {};
+}
+
+Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler lightColorSampler, std::uint32_t slots) {
+  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  samplerInfo.magFilter = VK_FILTER_LINEAR;
+  samplerInfo.minFilter = VK_FILTER_LINEAR;
+  samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkResult result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &linear_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+  // Rows of a full-circle non-linear map continue across φ = ±π.
+  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+  result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &prefixSampler_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+
+  for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
+    const Storage& s = kStorage[i];
+    if (usable(gpu, s.a) && (s.b == VK_FORMAT_UNDEFINED || usable(gpu, s.b))) supportedVariants_ |= 1u << i;
+  }
+  momentMapSupported_ = usable(gpu, kMomentMapFormat);
+
+  const std::array<VkSampler, kMaxShadowMaps> nearestSamplers{nearest, nearest, nearest, nearest, nearest, nearest};
+  const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  const VkDescriptorType image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  const std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{{
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
+      {1, image, 1, stage, nearestSamplers.data()},
+      {2, image, kMaxShadowMaps, stage, nearestSamplers.data()},
+      {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
+      {4, storage, 1, stage, nullptr},
+      {5, storage, 1, stage, nullptr},
+      {6, image, 1, stage, &linear_},
+      {7, storage, 1, stage, nullptr},
+      {8, image, 1, stage, nearestSamplers.data()},
+      {9, image, 1, stage, nearestSamplers.data()},
+      {10, storage, 1, stage, nullptr},
+      {11, storage, 1, stage, nullptr},
+      {12, image, 1, stage, &prefixSampler_},
+      {13, image, 1, stage, &prefixSampler_},
+      {14, storage, 1, stage, nullptr},
+      {15, storage, 1, stage, nullptr},
+      {16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {17, image, 1, stage, &lightColorSampler},
+  }};
+  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layoutInfo.bindingCount = kBindings;
+  layoutInfo.pBindings = bindings.data();
+  result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
+  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout_;
+  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
+  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+
+  // Every pipeline up front, so that no frame compiles one.
+  auto make = [&](std::span<const std::uint32_t> spirv, VkPipeline& out, const VkSpecializationInfo* spec = nullptr) {
+    return createComputePipeline(gpu, pipelineLayout_, spirv, out, spec);
+  };
+  if (Outcome o = make(shaders::moment_shadow_map_comp(), momentMapPipeline_); !o) return o;
+  if (Outcome o = make(shaders::epipole_fixup_args_comp(), fixupArgsPipeline_); !o) return o;
+  if (Outcome o = make(shaders::epipole_fixup_comp(), fixupPipeline_); !o) return o;
+  // prefix_sums.glsl's workgroup size (constant_id 0: threads per row, 1: rows per group).
+  const std::array<VkSpecializationMapEntry, 2> sizeEntries{{{0, 0, 4}, {1, 4, 4}}};
+  const std::array<std::uint32_t, 2> rowParallel{gpu::TYN_PF_ROW_THREADS, gpu::TYN_PF_ROWS_PER_GROUP};
+  const std::array<std::uint32_t, 2> threadPerRow{1u, gpu::TYN_PF_THREAD_PER_ROW_GROUP};
+  const VkSpecializationInfo rowParallelSpec{2, sizeEntries.data(), sizeof(rowParallel), rowParallel.data()};
+  const VkSpecializationInfo threadPerRowSpec{2, sizeEntries.data(), sizeof(threadPerRow), threadPerRow.data()};
+  // evaluate.comp's storage variant (constant_id 0).
+  const VkSpecializationMapEntry basisEntry{0, 0, 4};
+  for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
+    if (Outcome o = make(kStorage[i].rectify(), rectifyPipelines_[i]); !o) return o;
+    if (Outcome o = make(kStorage[i].prefixSums(), rowParallelPipelines_[i], &rowParallelSpec); !o) return o;
+    if (Outcome o = make(kStorage[i].prefixSums(), threadPerRowPipelines_[i], &threadPerRowSpec); !o) return o;
+    const VkSpecializationInfo basisSpec{1, &basisEntry, sizeof(i), &i};
+    if (Outcome o = make(shaders::evaluate_comp(), evaluatePipelines_[i], &basisSpec); !o) return o;
+  }
+
+  const std::array<VkDescriptorPoolSize, 4> sizes{{
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps + 6},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 7},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+  }};
+  sets_.resize(slots);
+  if (Outcome o = allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_); !o) return o;
+  constants_.resize(slots);
+  for (MappedBuffer& buffer : constants_) {
+    if (Outcome o = createMappedBuffer(gpu, sizeof(gpu::PrefilteredConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, buffer);
+        !o) {
+      return o;
+    }
+  }
+  return createDeviceBuffer(gpu, sizeof(gpu::PrefilteredFixupArgs),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, fixupArgs_);
+}
+
+void PrefilteredTechnique::destroyMaps(const Gpu& gpu, Maps& maps) {
+  destroyImage(gpu, maps.prefixB);
+  destroyImage(gpu, maps.prefixA);
+  destroyImage(gpu, maps.rectifiedB);
+  destroyImage(gpu, maps.rectifiedA);
+  destroyImage(gpu, maps.momentMap);
+  maps = Maps{};
+}
+
+void PrefilteredTechnique::destroy(const Gpu& gpu) {
+  for (Retired& retired : retired_) destroyMaps(gpu, retired.maps);
+  retired_.clear();
+  destroyMaps(gpu, maps_);
+  destroyBuffer(gpu, fixupArgs_);
+  for (MappedBuffer& buffer : constants_) destroyBuffer(gpu, buffer);
+  constants_.clear();
+  if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
+  std::vector<VkPipeline> pipelines{momentMapPipeline_, fixupArgsPipeline_, fixupPipeline_};
+  for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
+    for (VkPipeline p : {rectifyPipelines_[i], rowParallelPipelines_[i], threadPerRowPipelines_[i], evaluatePipelines_[i]}) {
+      pipelines.push_back(p);
+    }
+  }
+  for (VkPipeline pipeline : pipelines) {
+    if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
+  }
+  if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
+  if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
+  if (prefixSampler_ != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, prefixSampler_, gpu.allocator);
+  if (linear_ != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, linear_, gpu.allocator);
+  *this = PrefilteredTechnique{};
+}
+
+Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, std::uint32_t columns,
+                                         std::uint32_t rows, std::uint32_t sets, std::uint32_t momentMapSize,
+                                         std::uint64_t frameIndex) {
+  if (maps_.basis == basis && maps_.columns == columns && maps_.rows == rows && maps_.sets == sets &&
+      maps_.momentMapSize == momentMapSize) {
+    return {};
+  }
+  // Frames still in flight may use the old maps: they are destroyed once those have completed.
+  if (maps_.columns != 0) {
+    retired_.push_back({frameIndex == 0 ? 0 : frameIndex - 1, maps_});
+    maps_ = Maps{};
+  }
+  const Storage& s = kStorage[basis];
+  Maps fresh;
+  fresh.basis = basis;
+  fresh.columns = columns;
+  fresh.rows = rows;
+  fresh.sets = sets;
+  fresh.momentMapSize = momentMapSize;
+  const VkExtent2D extent{columns, rows};
+  Outcome outcome = createImage(gpu, kMomentMapFormat, {momentMapSize, momentMapSize}, kMapUsage, fresh.momentMap);
+  if (outcome) outcome = createImageArray(gpu, s.a, extent, s.layersA, kMapUsage, fresh.rectifiedA);
+  if (outcome) outcome = createImageArray(gpu, s.a, extent, s.layersA * sets, kMapUsage, fresh.prefixA);
+  if (outcome && s.b != VK_FORMAT_UNDEFINED) {
+    outcome = createImageArray(gpu, s.b, extent, 1, kMapUsage, fresh.rectifiedB);
+    if (outcome) outcome = createImageArray(gpu, s.b, extent, sets, kMapUsage, fresh.prefixB);
+  }
+  if (!outcome) {
+    destroyMaps(gpu, fresh);
+    return outcome;
+  }
+  maps_ = fresh;
+  return {};
+}
+
+Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
+                                      bool scatters, VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
+                                      std::uint32_t framesInFlight, std::string& note) {
+  // Frame f has completed once frame f + framesInFlight is being recorded.
+  std::erase_if(retired_, [&](Retired& retired) {
+    if (retired.lastFrame + framesInFlight > frameIndex) return false;
+    destroyMaps(gpu, retired.maps);
+    return true;
+  });
+
+  const std::uint32_t basis = static_cast<std::uint32_t>(settings.basis);
+  const Storage& storage = kStorage[basis];
+  if ((supportedVariants_ & (1u << basis)) == 0) {
+    return failure(Status::UnsupportedFeature, std::string("prefiltered.basis ") + storage.name +
+                                                   ": the device cannot store and linearly filter its formats");
+  }
+  if (settings.filteredResampling && !momentMapSupported_) {
+    return failure(Status::UnsupportedFeature,
+                   "prefiltered.filteredResampling: the device cannot store and filter R16G16B16A16_UNORM");
+  }
+
+  // Rectification (double precision on the CPU, rectification_setup.h).
+  const glm::dmat4 view(glm::make_mat4(frame.camera.view.data()));
+  const glm::dmat4 projection(glm::make_mat4(frame.camera.projection.data()));
+  prefiltered::ViewFrustum frustum;
+  if (Outcome o = prefiltered::buildViewFrustum(view, projection, frame.camera.infiniteFarSkyDistance, frustum); !o) {
+    return o;
+  }
+  const glm::dvec3 lightDirection = glm::normalize(
+      glm::dvec3(frame.light.direction[0], frame.light.direction[1], frame.light.direction[2]));
+  const prefiltered::NonLinearRectification rect = prefiltered::computeNonLinearRectification(frustum, lightDirection);
+  const prefiltered::ProjectiveRectification proj = prefiltered::computeProjectiveRectification(frustum, rect);
+  bool projective = false;
+  std::string rectNote;
+  const std::string stretch = proj.constructible ? printed("%.2f", proj.texelStretch) : std::string("inf");
+  switch (settings.rectification) {
+    case PrefilteredRectification::Automatic:
+      projective = prefiltered::useProjectiveRectification(proj);
+      rectNote = projective ? "projective rectification (automatic: texel stretch " + stretch + " <= 2)"
+                            : proj.constructible
+                                  ? "non-linear rectification (automatic: projective texel stretch " + stretch + " > 2)"
+                                  : "non-linear rectification (automatic: the light axis is in the frustum)";
+      break;
+    case PrefilteredRectification::NonLinear:
+      rectNote = "non-linear rectification (set)";
+      break;
+    case PrefilteredRectification::Projective:
+      projective = proj.constructible;
+      rectNote = projective ? "projective rectification (set; texel stretch " + stretch + ")"
+                            : "projective rectification impossible (the light axis is in the frustum): non-linear instead";
+      break;
+  }
+
+  // Extinction of the prefix weights: one grey set, or one set per distinct channel.
+  glm::dvec3 sigmaT(0.0);
+  for (const MediumComponent& c : frame.medium) {
+    for (int i = 0; i < 3; ++i) sigmaT[i] += double(c.scattering[i]) + double(c.absorption[i]);
+  }
+  const prefiltered::PrefixSumExtinction extinction =
+      prefiltered::choosePrefixSumExtinction(sigmaT, frustum.maxRayLength);
+  gpu::PrefilteredConstants k{};
+  std::uint32_t sets = 1;
+  std::string extinctionNote;
+  if (!extinction.perChannel) {
+    k.set_extinction = glm::vec4(static_cast<float>(extinction.sigma));
+    k.channel_set = glm::uvec4(0u);
+    extinctionNote = extinction.distinctChannels == 1
+                         ? "grey extinction"
+                         : "one grey extinction for the prefix weights (visibility error <= " +
+                               printed("%.4f", extinction.greyMaxError) + ")";
+  } else {
+    sets = 0;
+    for (int c = 0; c < 3; ++c) {
+      std::uint32_t set = sets;
+      for (int earlier = 0; earlier < c; ++earlier) {
+        if (sigmaT[earlier] == sigmaT[c]) set = k.channel_set[earlier];
+      }
+      if (set == sets) k.set_extinction[static_cast<int>(sets++)] = static_cast<float>(sigmaT[c]);
+      k.channel_set[c] = set;
+    }
+    extinctionNote = std::to_string(sets) + " prefix-sum sets, one per extinction (grey would err by " +
+                     printed("%.3f", extinction.greyMaxError) + ")";
+  }
+
+  // The epipole and its block (on screen: the CPU records the passes, the GPU sizes them).
+  const glm::mat4 viewProj = glm::make_mat4(frame.camera.projection.data()) * glm::make_mat4(frame.camera.view.data());
+  k.epipole = gpu::tyn_epipole(gpu::tyn_epipole_clip_directional(viewProj, glm::vec3(lightDirection)));
+  bool blockOnScreen = false;
+  if (settings.epipoleBlockPixels > 0 && k.epipole.z > 0.0f) {
+    const glm::vec2 size(static_cast<float>(extent.width), static_cast<float>(extent.height));
+    const glm::vec2 ndc = glm::clamp(glm::vec2(k.epipole.x, k.epipole.y) / k.epipole.z, glm::vec2(-4.0f), glm::vec2(4.0f));
+    const glm::vec2 centre = (ndc * 0.5f + 0.5f) * size;
+    const glm::vec2 lo = glm::floor(centre - 0.5f * static_cast<float>(settings.epipoleBlockPixels) + 0.5f);
+    const glm::vec2 hi = lo + static_cast<float>(settings.epipoleBlockPixels);
+    blockOnScreen = hi.x > 0.0f && hi.y > 0.0f && lo.x < size.x && lo.y < size.y;
+  }
+
+  const std::uint32_t mapSize = frame.shadowMaps[0].depth.extent.width;
+  k.nonlinear = prefiltered::toGpu(rect);
+  k.projective = prefiltered::toGpu(proj);
+  k.map = glm::uvec4(settings.columns, settings.rows, projective ? 1u : 0u, !projective && rect.fullCircle ? 1u : 0u);
+  k.options = glm::uvec4(settings.filteredResampling ? 1u : 0u, static_cast<std::uint32_t>(settings.spacing), sets, mapSize);
+  k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, 0u, 0u);
+  k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation, 0.0f, 0.0f, 0.0f);
+
+  if (Outcome o = ensureMaps(gpu, basis, settings.columns, settings.rows, sets,
+                             settings.filteredResampling ? mapSize : 1u, frameIndex);
+      !o) {
+    return o;
+  }
+  std::memcpy(constants_[slot].mapped, &k, sizeof(k));
+  plan_.basis = basis;
+  plan_.sets = sets;
+  plan_.scatters = scatters;
+  plan_.filtered = settings.filteredResampling;
+  plan_.threadPerRow = settings.prefixSums == PrefixSumScheme::ThreadPerRow;
+  plan_.epipoleBlock = blockOnScreen;
+
+  note += std::string("; ") + storage.name + ", " + std::to_string(settings.rows) + " rows x " +
+          std::to_string(settings.columns) + " columns, " + rectNote + ", " + extinctionNote +
+          (settings.filteredResampling ? ", filtered resampling" : ", nearest resampling") +
+          (blockOnScreen ? ", epipole block " + std::to_string(settings.epipoleBlockPixels) + " px ray-marched" : "");
+  return {};
+}
+
+void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& b) {
+  const VkDescriptorSet set = sets_[slot];
+  const VkDescriptorBufferInfo frameConstants{b.constants, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo constants{constants_[slot].buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorBufferInfo args{fixupArgs_.buffer, 0, VK_WHOLE_SIZE};
+  const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
+  const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);
+  auto general = [](const OwnedImage& image, const OwnedImage& fallback) {
+    return VkDescriptorImageInfo{VK_NULL_HANDLE, image.view != VK_NULL_HANDLE ? image.view : fallback.view,
+                                 VK_IMAGE_LAYOUT_GENERAL};
+  };
+  // Image B of a one-image variant is never read or written; A stands in to keep the set valid.
+  const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo transmittance{VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo moments = general(maps_.momentMap, maps_.momentMap);
+  const VkDescriptorImageInfo rectA = general(maps_.rectifiedA, maps_.rectifiedA);
+  const VkDescriptorImageInfo rectB = general(maps_.rectifiedB, maps_.rectifiedA);
+  const VkDescriptorImageInfo prefixA = general(maps_.prefixA, maps_.prefixA);
+  const VkDescriptorImageInfo prefixB = general(maps_.prefixB, maps_.prefixA);
+
+  std::array<VkWriteDescriptorSet, kBindings> writes{};
+  auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
+    VkWriteDescriptorSet& w = writes[binding];
+    w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    w.dstSet = set;
+    w.dstBinding = binding;
+    w.descriptorCount = count;
+    w.descriptorType = type;
+    return w;
+  };
+  const VkDescriptorType image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+  write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &frameConstants;
+  write(1, image, 1).pImageInfo = &depth;
+  write(2, image, kMaxShadowMaps).pImageInfo = shadow.data();
+  write(3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &constants;
+  write(4, storage, 1).pImageInfo = &scattering;
+  write(5, storage, 1).pImageInfo = &transmittance;
+  write(6, image, 1).pImageInfo = &moments;
+  write(7, storage, 1).pImageInfo = &moments;
+  write(8, image, 1).pImageInfo = &rectA;
+  write(9, image, 1).pImageInfo = &rectB;
+  write(10, storage, 1).pImageInfo = &rectA;
+  write(11, storage, 1).pImageInfo = &rectB;
+  write(12, image, 1).pImageInfo = &prefixA;
+  write(13, image, 1).pImageInfo = &prefixB;
+  write(14, storage, 1).pImageInfo = &prefixA;
+  write(15, storage, 1).pImageInfo = &prefixB;
+  write(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
+  const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
+  write(17, image, 1).pImageInfo = &lightColor;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
+}
+
+void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
+                                  VkExtent2D extent, GpuTimer& timer, std::vector<std::string>& passes) {
+  writeDescriptors(gpu, slot, bindings);
+  const VkDescriptorSet set = sets_[slot];
+  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
+  const VkAccessFlags readWrite = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  const Storage& storage = kStorage[plan_.basis];
+
+  // Each pass's timestamps come before the barrier that starts it (see Context::recordScattering).
+  auto pass = [&](const char* name, VkPipeline pipeline, auto&& dispatch) {
+    timer.beginPass(gpu, cmd, name);
+    memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute, readWrite);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    dispatch();
+    timer.endPass(gpu, cmd);
+    passes.emplace_back(name);
+  };
+
+  // Every map is bound (the evaluation's descriptors name the prefix sums even when it skips
+  // them), so every map is in GENERAL, also in a frame that computes only T.
+  discardToGeneral(gpu, cmd, {&maps_.momentMap, &maps_.rectifiedA, &maps_.rectifiedB, &maps_.prefixA, &maps_.prefixB});
+  if (plan_.scatters) {
+    if (plan_.filtered) {
+      const std::uint32_t size = maps_.momentMapSize;
+      pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {
+        gpu.vk.vkCmdDispatch(cmd, groups(size, gpu::TYN_PF_TEXEL_GROUP), groups(size, gpu::TYN_PF_TEXEL_GROUP), 1);
+      });
+    }
+    pass("prefiltered_rectify", rectifyPipelines_[plan_.basis], [&] {
+      gpu.vk.vkCmdDispatch(cmd, groups(maps_.columns, gpu::TYN_PF_TEXEL_GROUP),
+                           groups(maps_.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
+    });
+    const VkPipeline prefix = plan_.threadPerRow ? threadPerRowPipelines_[plan_.basis] : rowParallelPipelines_[plan_.basis];
+    const std::uint32_t rowsPerGroup = plan_.threadPerRow ? gpu::TYN_PF_THREAD_PER_ROW_GROUP : gpu::TYN_PF_ROWS_PER_GROUP;
+    pass("prefiltered_prefix_sums", prefix, [&] {
+      gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.rows, rowsPerGroup), plan_.sets * slotsOf(storage));
+    });
+  }
+  pass("prefiltered_evaluate", evaluatePipelines_[plan_.basis], [&] {
+    gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
+                         groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
+  });
+  if (plan_.scatters && plan_.epipoleBlock) {
+    // The previous frame's indirect read of the arguments must be done before they are rewritten.
+    timer.beginPass(gpu, cmd, "prefiltered_epipole_fixup_args");
+    memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, VK_ACCESS_SHADER_WRITE_BIT, kCompute,
+                  readWrite);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupArgsPipeline_);
+    gpu.vk.vkCmdDispatch(cmd, 1, 1, 1);
+    timer.endPass(gpu, cmd);
+    passes.emplace_back("prefiltered_epipole_fixup_args");
+
+    timer.beginPass(gpu, cmd, "prefiltered_epipole_fixup");
+    memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                  readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipeline_);
+    gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
+    timer.endPass(gpu, cmd);
+    passes.emplace_back("prefiltered_epipole_fixup");
+  }
+  // Later passes (composite, AOV copies) read the targets after a barrier of the caller's.
+  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute, VK_ACCESS_SHADER_READ_BIT);
+}
+
+}  // namespace tyndall

@@ -1,0 +1,103 @@
+// Prefiltered single scattering (klehm2014, peters2017 §5) for directional lights: the host's
+// shadow map is resampled into a rectified shadow map whose rows are epipolar slices and in which
+// every view ray has one constant depth; transmittance-weighted prefix sums along the rows then
+// hold, for every view ray at once, the filtered visibility up to each distance, so a pixel needs
+// one lookup (per prefix-sum set) and a reconstruction from moments or Fourier coefficients.
+// Pixels around an on-screen epipole are ray-marched instead (klehm2014 Fig. 8).
+// Shaders: shaders/prefiltered/. Maths: rectification.h, moments.h, rectification_setup.h.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/shared_constants.h"
+#include "gpu.h"
+#include "prefiltered/prefiltered_constants.h"
+#include "timing.h"
+
+namespace tyndall {
+
+/// Checks a PrefilteredSettings' every field; the message names the field.
+Outcome validatePrefilteredSettings(const PrefilteredSettings& settings);
+
+class PrefilteredTechnique {
+ public:
+  using Bindings = ScatteringBindings;
+
+  /// Pipelines of every storage variant and both prefix-sum schemes, the descriptor sets and the
+  /// per-slot constant buffers: nothing here depends on the output, the settings or the frame.
+  /// `lightColorSampler`: linear, clamp to edge (the epipole block's Reference walk reads the
+  /// light-colour texture through it).
+  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler lightColorSampler, std::uint32_t slots);
+  void destroy(const Gpu& gpu);
+
+  /// The frame's CPU set-up: rectification bounds and the projective/non-linear choice, the
+  /// extinction of the prefix weights, the epipole block; writes the slot's constants and makes
+  /// the maps match the settings (maps of other sizes are kept until no frame in flight can use
+  /// them). `note` receives what was chosen, for the stats. The light must be directional.
+  /// `scatters`: false when there is no in-scattering to compute (only T is written then).
+  Outcome prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings, bool scatters,
+                  VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex, std::uint32_t framesInFlight,
+                  std::string& note);
+
+  /// Records the passes prepare() chose; each is timed and appended to `passes`. The host inputs
+  /// must already be readable by compute shaders and the targets writable (GENERAL).
+  void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings, VkExtent2D extent,
+              GpuTimer& timer, std::vector<std::string>& passes);
+
+ private:
+  struct Maps {
+    OwnedImage momentMap;   // host map size × 1 (RGBA16_UNORM), 1 × 1 when filtering is off
+    OwnedImage rectifiedA;  // columns × rows, one layer per slot of image A
+    OwnedImage rectifiedB;  // columns × rows, image B of the two-image variants
+    OwnedImage prefixA;     // columns × rows, layers of A × prefix-sum sets
+    OwnedImage prefixB;
+    std::uint32_t basis = ~0u;
+    std::uint32_t columns = 0;
+    std::uint32_t rows = 0;
+    std::uint32_t sets = 0;
+    std::uint32_t momentMapSize = 0;
+  };
+  struct Retired {
+    std::uint64_t lastFrame = 0;
+    Maps maps;
+  };
+  Outcome ensureMaps(const Gpu& gpu, std::uint32_t basis, std::uint32_t columns, std::uint32_t rows,
+                     std::uint32_t sets, std::uint32_t momentMapSize, std::uint64_t frameIndex);
+  void destroyMaps(const Gpu& gpu, Maps& maps);
+  void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
+
+  VkSampler linear_ = VK_NULL_HANDLE;       // clamp to edge: the moment map
+  VkSampler prefixSampler_ = VK_NULL_HANDLE;  // linear, clamp along u, repeat along v
+  VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
+  VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  VkPipeline momentMapPipeline_ = VK_NULL_HANDLE;
+  std::array<VkPipeline, 6> rectifyPipelines_{};           // per storage variant
+  std::array<VkPipeline, 6> rowParallelPipelines_{};       // prefix sums, peters2017 App. C
+  std::array<VkPipeline, 6> threadPerRowPipelines_{};      // prefix sums, klehm2014 §3.3
+  std::array<VkPipeline, 6> evaluatePipelines_{};          // specialised per storage variant
+  VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
+  VkPipeline fixupPipeline_ = VK_NULL_HANDLE;
+  std::uint32_t supportedVariants_ = 0;  // bit per storage variant whose formats the device has
+  bool momentMapSupported_ = false;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> sets_;
+  std::vector<MappedBuffer> constants_;  // per slot: PrefilteredConstants
+  MappedBuffer fixupArgs_;               // PrefilteredFixupArgs
+  Maps maps_;
+  std::vector<Retired> retired_;
+
+  // This frame's choices (prepare → record).
+  struct FramePlan {
+    std::uint32_t basis = 0;
+    std::uint32_t sets = 1;
+    bool scatters = false;
+    bool filtered = false;
+    bool threadPerRow = false;
+    bool epipoleBlock = false;
+  } plan_;
+};
+
+}  // namespace tyndall

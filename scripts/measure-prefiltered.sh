@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Measures the prefiltered technique against the Reference: per storage variant and scene, the
+# relative RMSE of L_in (tyndall-compare against the Reference's AOV from the same build and
+# device), the GPU time of each prefiltered pass (timestamps, median over the frames) and Tyndall's
+# total, next to the Reference's. Writes out/measure-prefiltered/* and prints one table row per run.
+# Usage: scripts/measure-prefiltered.sh [build-dir] (default: build)
+# Environment: SCENES (default: the directional scenes), BASES (default: all six), SIZE (640x360),
+#   SHADOW_MAP (1024), FRAMES (3), PREFILTERED (extra --prefiltered keys, e.g. "rows=512,columns=512").
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${1:-build}"
+render="$build/samples/tyndall-render"
+compare="$build/samples/tyndall-compare"
+[ -x "$render" ] || { echo "build first: $render not found" >&2; exit 1; }
+out=out/measure-prefiltered
+mkdir -p "$out"
+size="${SIZE:-640x360}"
+w="${size%x*}"; h="${size#*x}"
+map="${SHADOW_MAP:-1024}"
+frames="${FRAMES:-3}"
+extra="${PREFILTERED:-}"
+printf '| scene | variant | relative RMSE | moment map | rectify | prefix sums | evaluate | epipole block | prefiltered total ms | Reference ms |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|\n'
+for scene in ${SCENES:-pillars fence forest window-room analytic-spheres analytic-boxes analytic-mixed}; do
+  ref="$out/$scene-$size-reference"
+  "$render" "samples/scenes/$scene.json" --technique reference --width "$w" --height "$h" \
+    --shadow-map-size "$map" --frames "$frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
+  for basis in ${BASES:-moments4_64 moments4_128 moments6_64 moments6_96 moments6_192 fourier32}; do
+    run="$out/$scene-$size-$basis"
+    "$render" "samples/scenes/$scene.json" --technique prefiltered --prefiltered "basis=$basis${extra:+,$extra}" \
+      --width "$w" --height "$h" --shadow-map-size "$map" --frames "$frames" --timings "$run.json" \
+      --aov-scattering "$run.exr" >/dev/null
+    "$compare" "$run.exr" "$ref.exr" >"$run-error.json"
+    python3 - "$run.json" "$run-error.json" "$ref.json" "$scene" "$basis" <<'PY'
+import json, sys
+t = json.load(open(sys.argv[1]))
+e = json.load(open(sys.argv[2]))
+r = json.load(open(sys.argv[3]))
+p = t["passMilliseconds"]
+block = p.get("prefiltered_epipole_fixup_args", 0) + p.get("prefiltered_epipole_fixup", 0)
+total = sum(v for k, v in p.items() if k.startswith("prefiltered_"))
+print(f"| {sys.argv[4]} | {sys.argv[5]} | {e['relativeRmse'] * 100:.2f}% | "
+      f"{p.get('prefiltered_moment_shadow_map', 0):.1f} | {p.get('prefiltered_rectify', 0):.1f} | "
+      f"{p.get('prefiltered_prefix_sums', 0):.1f} | {p.get('prefiltered_evaluate', 0):.1f} | {block:.1f} | "
+      f"{total:.1f} | {r['passMilliseconds'].get('reference_scattering', 0):.1f} |")
+PY
+  done
+done

@@ -1,0 +1,157 @@
+#version 460
+// Per-pixel evaluation (klehm2014 §3.1, peters2017 §5.1.1, §5.3, §5.4): one bilinear lookup of the
+// prefix sums at the end of the pixel's view ray (one per prefix-sum set), the visibility averaged
+// along the ray reconstructed from it, and L_in = Σσ_s p(cos θ) E · visibility · ∫_0^s e^{−σ_t t} dt.
+//   - moments: dequantize, bias toward b* by α_b of the variant (§2.5), the sharp lower and upper
+//     bounds of the shadow intensity (Algorithm 1: 3×3 Hankel and a quadratic for 4 moments, 4×4
+//     and a cubic for 6), between them by β: the adaptive overestimation (§5.3.1) or a constant;
+//   - Fourier: the clamped series ½ + Σ a_k(z_r) B̄_k (klehm2014 Eq. 9, Appendix A).
+// With rayWeightTaps > 1 the lookup is K lookups along the row whose combination re-weights the
+// row's prefix sums to the pixel's own ray (weight_taps.h); the reconstruction runs once, on the
+// combined representation. The transmittance T = e^{−σ_t s} is written exactly. The storage variant
+// is a specialisation constant: this pass only samples, so it needs no format qualifier.
+#extension GL_GOOGLE_include_directive : require
+
+#include "prefiltered/prefiltered_common.glsl"
+#include "prefiltered/moments.h"
+#include "prefiltered/weight_taps.h"
+#include "common/medium.glsl"
+
+layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
+
+layout(constant_id = 0) const uint TYN_PF_BASIS = 0u;
+
+// The lookups of one pixel for one prefix-sum set: texture coordinates along the row (already
+// shifted by tyn_prefix_lookup_u), the row coordinate, and the coefficients (summing to 1).
+struct TynPfTaps {
+  float u[TYN_PF_MAX_TAPS];
+  float c[TYN_PF_MAX_TAPS];
+  uint count;
+  float v;
+};
+
+vec4 tyn_pf_fetch_a(TynPfTaps taps, float layer) {
+  vec4 sum = vec4(0.0);
+  for (uint k = 0u; k < taps.count; ++k) sum += taps.c[k] * texture(prefix_a, vec3(taps.u[k], taps.v, layer));
+  return sum;
+}
+
+vec4 tyn_pf_fetch_b(TynPfTaps taps, float layer) {
+  vec4 sum = vec4(0.0);
+  for (uint k = 0u; k < taps.count; ++k) sum += taps.c[k] * texture(prefix_b, vec3(taps.u[k], taps.v, layer));
+  return sum;
+}
+
+// 1 − shadow intensity along the ray for one prefix-sum set, at rectified depth `depth_ray`.
+float tyn_pf_visibility(uint set, TynPfTaps taps, float depth_ray, float beta) {
+  float zf = 2.0 * depth_ray - 1.0;  // signed depth of the moments
+  float layer = float(set);
+  vec2 bounds;
+  if (TYN_PF_BASIS == TYN_PF_MOMENTS4_64) {
+    vec4 b = tyn_dequantize_moments4_64(tyn_pf_fetch_a(taps, layer));
+    bounds = tyn_moments4_bounds(tyn_bias_moments(b, TYN_MOMENTS4_64_B_STAR, TYN_MOMENTS4_64_ALPHA), zf);
+  } else if (TYN_PF_BASIS == TYN_PF_MOMENTS4_128) {
+    vec4 b = tyn_dequantize_moments4_128(tyn_pf_fetch_a(taps, layer));
+    bounds = tyn_moments4_bounds(tyn_bias_moments(b, TYN_MOMENTS4_128_B_STAR, TYN_MOMENTS4_128_ALPHA), zf);
+  } else if (TYN_PF_BASIS == TYN_PF_FOURIER32) {
+    vec4 filtered[TYN_FOURIER_LAYERS];
+    for (uint l = 0u; l < TYN_FOURIER_LAYERS; ++l) {
+      filtered[l] = tyn_fourier_unpack(tyn_pf_fetch_a(taps, float(set * TYN_FOURIER_LAYERS + l)));
+    }
+    return tyn_fourier_visibility(depth_ray, filtered);
+  } else {
+    vec3 odd;
+    vec3 even;
+    float alpha;
+    if (TYN_PF_BASIS == TYN_PF_MOMENTS6_64) {
+      odd = tyn_dequantize_moments6_odd(tyn_pf_fetch_a(taps, 2.0 * layer).xyz);
+      even = tyn_dequantize_moments6_even(tyn_pf_fetch_a(taps, 2.0 * layer + 1.0).xyz);
+      alpha = TYN_MOMENTS6_64_ALPHA;
+    } else {
+      vec4 a = tyn_pf_fetch_a(taps, layer);
+      vec2 b = tyn_pf_fetch_b(taps, layer).xy;
+      odd = a.xyz;
+      even = vec3(a.w, b);
+      if (TYN_PF_BASIS == TYN_PF_MOMENTS6_96) {
+        odd = tyn_dequantize_moments6_odd(odd);
+        even = tyn_dequantize_moments6_even(even);
+        alpha = TYN_MOMENTS6_96_ALPHA;
+      } else {
+        alpha = TYN_MOMENTS6_192_ALPHA;
+      }
+    }
+    bounds = tyn_moments6_bounds(tyn_bias_moments(odd, TYN_MOMENTS6_B_STAR_ODD, alpha),
+                                 tyn_bias_moments(even, TYN_MOMENTS6_B_STAR_EVEN, alpha), zf);
+  }
+  return 1.0 - tyn_shadow_intensity(bounds, beta);
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (any(greaterThanEqual(pixel, frame.extent.xy))) return;
+
+  float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
+  TynViewRay ray = tyn_view_ray(pixel, depth);
+  float s = ray.surface_distance;
+  imageStore(out_transmittance, ivec2(pixel), vec4(exp(-frame.extinction.rgb * s), 1.0));
+  if (frame.extent.z == 0u) {
+    imageStore(out_scattering, ivec2(pixel), vec4(0.0));
+    return;
+  }
+
+  // Where the ray ends in the rectified map, and its (constant) rectified depth. Both forms take
+  // the ray's direction and length, not a world position (rectification.h "Precision").
+  vec3 uvd;
+  if (tyn_pf_projective()) {
+    uvd = tyn_projective_texcoord_from_offset(pf.projective, ray.direction * s);
+  } else {
+    uvd = tyn_rectified_texcoord(pf.nonlinear, tyn_rectified_from_view_ray(pf.nonlinear, ray.direction, s));
+  }
+  float columns = float(pf.map.x);
+  float v = tyn_pf_lookup_v(uvd.y);
+  float depth_ray = clamp(uvd.z, 0.0, 1.0);
+
+  // The ray's pace through its row against the row's reference ray: κ = sin θ_ref / sin θ ≥ 1 for
+  // the fastest-ray reference (rayWeightTaps > 1 requires it).
+  uint tap_count = pf.fixup.y;
+  vec2 slice = tyn_view_ray_slice(pf.nonlinear, ray.direction);
+  float reference_sin = tyn_pf_reference_sin(slice.x);
+  float kappa = max(reference_sin / max(sin(slice.y), TYN_RECT_MIN_SIN), 1.0);
+  float tau_end = s / kappa;
+  float eta = tyn_pf_projective() ? tyn_projective_eta(pf.projective, uvd.y) : 0.0;
+
+  vec3 to_light = -frame.light_direction.xyz;
+  float beta = pf.bounds.x < 0.0 ? tyn_adaptive_overestimation(to_light, -ray.direction) : pf.bounds.x;
+  vec3 set_visibility = vec3(1.0);
+  for (uint set = 0u; set < pf.options.z; ++set) {
+    TynPfTaps taps;
+    taps.v = v;
+    taps.count = tap_count;
+    if (tap_count <= 1u) {
+      taps.u[0] = tyn_prefix_lookup_u(uvd.x, columns);
+      taps.c[0] = 1.0;
+    } else {
+      float sum = 0.0;
+      for (uint k = 0u; k < tap_count; ++k) {
+        vec2 tap = tyn_weight_tap(pf.set_extinction[set], kappa, tau_end, k + 1u, tap_count);
+        // The last tap is the ray's end itself, where the single lookup reads.
+        float tau = tap.x * tau_end;
+        float u = k + 1u == tap_count ? uvd.x
+                  : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
+                                        : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
+        taps.u[k] = tyn_prefix_lookup_u(u, columns);
+        taps.c[k] = tap.y;
+        sum += tap.y;
+      }
+      // Σ c = 1 in exact arithmetic; the rounding that tyn_weight_tap clamps is renormalised.
+      for (uint k = 0u; k < tap_count; ++k) taps.c[k] /= max(sum, 1.0e-30);
+    }
+    set_visibility[set] = tyn_pf_visibility(set, taps, depth_ray, beta);
+  }
+  vec3 visibility = vec3(set_visibility[pf.channel_set.x], set_visibility[pf.channel_set.y],
+                         set_visibility[pf.channel_set.z]);
+  vec3 radiance_factor =
+      frame.light_radiance.rgb * tyn_phase_weighted_scattering(dot(ray.direction, to_light));
+  vec3 in_scattering = tyn_prefiltered_inscattering(radiance_factor, visibility, s, frame.extinction.rgb);
+  imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+}

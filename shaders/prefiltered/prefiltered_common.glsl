@@ -1,0 +1,88 @@
+// Declarations every prefiltered pass shares: one descriptor set layout (the storage images, whose
+// format qualifiers depend on the storage variant, are declared by storage_variants.glsl) and the
+// helpers that map texels of the rectified map to light rays.
+#ifndef TYNDALL_PREFILTERED_COMMON_GLSL
+#define TYNDALL_PREFILTERED_COMMON_GLSL
+
+#include "common/shared_constants.h"
+#include "prefiltered/prefiltered_constants.h"
+
+layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; };
+layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
+layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
+layout(set = 0, binding = 3, std140) uniform PrefilteredBlock { PrefilteredConstants pf; };
+layout(set = 0, binding = 4, rgba32f) uniform image2D out_scattering;
+layout(set = 0, binding = 5, rgba32f) uniform image2D out_transmittance;
+// Four moments of the host's signed depth, Θ4*-quantized (RGBA16_UNORM), bilinear, clamped to the edge.
+layout(set = 0, binding = 6) uniform sampler2D moment_shadow_map;
+// binding 7: the moment map as a storage image (moment_shadow_map.comp).
+// The rectified map, one or two images (nearest: texelFetch only).
+layout(set = 0, binding = 8) uniform sampler2DArray rectified_a;
+layout(set = 0, binding = 9) uniform sampler2DArray rectified_b;
+// bindings 10, 11: the rectified map as storage images (storage_variants.glsl).
+// The prefix sums: bilinear, clamped along rows (u), repeating across them (v) for the full
+// circle; a map that does not wrap clamps v itself (tyn_pf_lookup_v).
+layout(set = 0, binding = 12) uniform sampler2DArray prefix_a;
+layout(set = 0, binding = 13) uniform sampler2DArray prefix_b;
+// bindings 14, 15: the prefix sums as storage images (storage_variants.glsl).
+layout(set = 0, binding = 16, std430) buffer FixupBlock { PrefilteredFixupArgs fixup_args; };
+// The light-colour texture (common/light_color.glsl), read by the epipole block's Reference walk.
+layout(set = 0, binding = 17) uniform sampler2D light_color;
+
+#include "common/view_ray.glsl"
+
+NonLinearRectificationParams tyn_pf_rect() { return pf.nonlinear; }
+ProjectiveRectificationParams tyn_pf_proj() { return pf.projective; }
+bool tyn_pf_projective() { return pf.map.z != 0u; }
+
+// Camera-relative offset of the light ray through the centre of a rectified texel (texture
+// coordinates tc), at light-frame height h = 0, and the ray's radial coordinate in the map's
+// terms: r for the non-linear map, x for the projective one (both > 0 at texel centres).
+vec3 tyn_pf_light_ray_offset(vec2 tc, out float radial) {
+  if (tyn_pf_projective()) {
+    float x = tyn_projective_x(pf.projective, tc.x);
+    float eta = tyn_projective_eta(pf.projective, tc.y);
+    radial = x;
+    return x * pf.nonlinear.axis_x.xyz + (eta * x) * pf.nonlinear.axis_y.xyz;
+  }
+  float r = tc.x * pf.nonlinear.origin.w;
+  float phi = (tc.y - 0.5) * pf.nonlinear.axis_x.w;
+  radial = r;
+  return r * (cos(phi) * pf.nonlinear.axis_x.xyz + sin(phi) * pf.nonlinear.axis_y.xyz);
+}
+
+// Normalised rectified depth of the point at light-frame height h on that light ray, clamped to
+// [0, 1] (klehm2014 §4.1: occluders outside the frustum's range keep their effect).
+float tyn_pf_rectified_depth(float radial, float h) {
+  if (tyn_pf_projective()) {
+    return clamp((h / radial - pf.projective.zeta.x) / (pf.projective.zeta.y - pf.projective.zeta.x), 0.0, 1.0);
+  }
+  return clamp(tyn_rectified_depth(pf.nonlinear, atan(radial, h)), 0.0, 1.0);
+}
+
+// The slice (epipolar plane) of a row: its azimuth φ and, for the projective map, η = tan φ.
+float tyn_pf_row_phi(float v) {
+  if (tyn_pf_projective()) return tyn_projective_row_phi(pf.projective, v);
+  return (v - 0.5) * pf.nonlinear.axis_x.w;
+}
+
+// The sine of the reference ray of a slice (the setting's heuristic), from the slice's own
+// inclination range; a slice that misses the frustum (no pixel reads it) takes the frustum's.
+float tyn_pf_reference_sin(float phi) {
+  vec2 range = tyn_slice_theta_range(pf.nonlinear, phi);
+  if (range.x > range.y) range = pf.nonlinear.theta_bounds.xy;
+  if (pf.options.y == TYN_PF_SPACING_REFERENCE_RAY) return tyn_reference_sin_klehm(range, false);
+  // The slice's fastest ray: the inclination nearest π/2 (klehm2014 §3.2's ω_min).
+  if (pf.options.y == TYN_PF_SPACING_FASTEST_RAY) return max(sin(clamp(0.5 * TYN_PI, range.x, range.y)), TYN_RECT_MIN_SIN);
+  return tyn_reference_sin_mean_theta(range);
+}
+
+// Row coordinate of a lookup: a map that does not wrap is clamped to its first and last rows'
+// centres (the sampler repeats along v for the full circle).
+float tyn_pf_lookup_v(float v) {
+  if (pf.map.w != 0u) return v;
+  float half_texel = 0.5 / float(pf.map.y);
+  return clamp(v, half_texel, 1.0 - half_texel);
+}
+
+#endif

@@ -1,0 +1,5 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Prefix sums of the moments4_64 storage variant (prefix_sums.glsl).
+#define TYN_PF_BASIS 0
+#include "prefiltered/prefix_sums.glsl"

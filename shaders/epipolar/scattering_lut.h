@@ -24,9 +24,10 @@
 // e.g. local_size_x = 64 and 4 groups) whenever the medium changes, read by texelFetch (the filter
 // is done here, in float; any sampler, the mode is irrelevant; a storage image with imageLoad works
 // too). Hardware bilinear filtering is NOT used: it interpolates with subTexelPrecisionBits of weight
-// (4 guaranteed, 8 typical), an error of up to 1/512 of the step between neighbouring texels, which
-// the difference F(t_a) − F(t_b) turns into percent-level errors on short sections. Half floats
-// would add 5e-4 of rounding to every value.
+// (4 guaranteed, 8 typical), an error of up to 1/32 (1/512) of the step between neighbouring
+// texels, i.e. up to 3e-3 (2e-4) of Ĝ where it changes by 10% per texel, which the difference
+// F(t_a) − F(t_b) multiplies by up to 7 (see TYN_SCATTERING_LUT_GUARD). Half floats would add 5e-4
+// (2^-11) of rounding to every value.
 //
 // ## The reformulation (checked numerically in the unit test)
 // t_L = dot(L − C, v) (the foot: closest point of the line to L), h = |L − C − t_L v|,
@@ -54,7 +55,8 @@
 //   (1 when σ_t = 0: Ĝ then does not depend on h and every row is the same); x = 1 is h = ∞. Ĝ
 //   changes with log k over k ∈ [1e-2, 1e3] (phase lobes seen through the exponential), and √κ
 //   spreads log k around K_MID; near k = 0 it keeps k ∝ x², which flattens the k ln k that a
-//   backward lobe puts into Ĝ (x = k/(1 + k) left 0.1 there, measured).
+//   backward lobe puts into Ĝ (HG g = −0.9, 65 rows, double: interpolation error 0.11 there with
+//   x = k/(1 + k), 5e-3 with √κ).
 //   θ axis: y = ln(1 + θ/c) / (2β) for θ ≤ π/2 and 1 − ln(1 + u/c) / (2β) beyond, β = ln(1 + π/(2c)),
 //   c = TYN_SCATTERING_LUT_THETA_KNEE = 0.02: spacing ∝ (θ + c) near θ = 0 and ∝ (u + c) near π
 //   (1.7e-4 rad at the ends, 0.045 rad in the middle), so forward lobes up to g = 0.99 (width
@@ -97,11 +99,16 @@
 // is tiny or the light far. Measured: ≤ 6e-6 relative on the same matrix, every section by
 // quadrature alone; spot sections crossing the penumbra ≤ 3e-4 (the table's share).
 //
-// ## The phase function's precision
+// ## Float precision on a GPU
 // common/phase.h takes cos θ, and float rounds cos θ near 1 by 3e-8: for HG g = 0.99 that is 7e-4
 // of 1 + g² − 2g cos θ within 0.01 rad of the light. The build and the quadrature know θ (or π − θ)
 // and evaluate the phase from 2 sin²(θ/2) and 2 cos²(θ/2) instead (tyn_scattering_lut_phase, the
-// same formulas), to 1e-6.
+// same formulas), to 1e-6. Vulkan guarantees the built-in sin and cos only to 2^-11 absolute and
+// atan to 4096 ulp, while angles here go down to h/d and need relative accuracy: the header uses its
+// own (tyn_scattering_lut_sin, _cos, _atan2: polynomials, within 1e-7 relative, unit-tested). exp
+// (3 + 2|x| ulp: 1e-5 at e^{−80}), log (2^-21 absolute, only in coordinates and the normaliser),
+// sqrt and division are used as built in. (Not run on a GPU here: only the C++ compilation of the
+// same source was measured; glslangValidator compiles every function.)
 //
 // ## Accessors (GLSL has no pointers): define before including, as needed
 //   TYN_SCATTERING_LUT_FETCH(texel)         vec3: RGB of the table texel ivec2(column, row)
@@ -169,9 +176,68 @@ TYN_CONST int TYN_LOCAL_LIGHT_MAX_PIECES = 64;
 // there (HG g = 0.99 across its range). Its steps then no longer limit the pieces.
 TYN_CONST float TYN_LOCAL_LIGHT_EXTINCT = 40.0f;
 // Smallest distance from the light to the ray that is used (scene units): a ray through the light
-// has an infinite integral; 1e-20 keeps every angle h/d a normal float for d up to 1e17.
-TYN_CONST float TYN_LOCAL_LIGHT_MIN_H = 1e-20f;
+// has an infinite integral; 1e-18 keeps h² (1e-36) and every angle h/d (d < 1e20) normal floats, which
+// GPUs would otherwise flush to 0.
+TYN_CONST float TYN_LOCAL_LIGHT_MIN_H = 1e-18f;
 TYN_CONST float TYN_HALF_PI = 1.57079632679490f;
+
+// ---- sin, cos and atan2 with relative accuracy ----
+// Vulkan requires of the built-ins only 2^-11 absolute accuracy for sin and cos on [−π, π] and 4096
+// ulp for atan; the angles here go down to h/d ~ 1e-20 and need relative accuracy (sin θ gives
+// d = h / sin θ, 2 sin²(θ/2) the phase near a lobe). These use only +, −, ×, ÷ (correctly rounded
+// or within 2.5 ulp) and are within a few ulps on the ranges used; the unit test checks them.
+
+// π/2 as a float plus its remainder, so that π/2 − x is exact to an ulp for x near π/2.
+TYN_CONST float TYN_HALF_PI_HI = 1.57079637f;
+TYN_CONST float TYN_HALF_PI_LO = -4.37113883e-8f;
+
+// Taylor polynomials on [0, π/4]: the first omitted terms are x¹³/13! < 7e-12 and x¹⁴/14! < 4e-13.
+TYN_FUNC float tyn_scattering_lut_sin_poly(float x) {
+  float z = x * x;
+  return x + x * z * (-1.0f / 6.0f + z * (1.0f / 120.0f + z * (-1.0f / 5040.0f + z * (1.0f / 362880.0f +
+                      z * (-1.0f / 39916800.0f)))));
+}
+
+TYN_FUNC float tyn_scattering_lut_cos_poly(float x) {
+  float z = x * x;
+  return 1.0f + z * (-0.5f + z * (1.0f / 24.0f + z * (-1.0f / 720.0f + z * (1.0f / 40320.0f +
+                     z * (-1.0f / 3628800.0f + z * (1.0f / 479001600.0f))))));
+}
+
+// sin x and cos x for x ∈ [0, π/2] (beyond π/4 through the complement π/2 − x).
+TYN_FUNC float tyn_scattering_lut_sin(float x) {
+  return x <= 0.785398163f ? tyn_scattering_lut_sin_poly(x)
+                           : tyn_scattering_lut_cos_poly((TYN_HALF_PI_HI - x) + TYN_HALF_PI_LO);
+}
+
+TYN_FUNC float tyn_scattering_lut_cos(float x) {
+  return x <= 0.785398163f ? tyn_scattering_lut_cos_poly(x)
+                           : tyn_scattering_lut_sin_poly((TYN_HALF_PI_HI - x) + TYN_HALF_PI_LO);
+}
+
+// atan z for z ∈ [0, 1] (Cephes atanf: beyond tan(π/8), π/4 + atan((z − 1)/(z + 1)); then an odd
+// polynomial of degree 9; relative error ~1e-7).
+TYN_FUNC float tyn_scattering_lut_atan01(float z) {
+  float offset = 0.0f;
+  if (z > 0.414213562f) {
+    offset = 0.785398163f;
+    z = (z - 1.0f) / (z + 1.0f);
+  }
+  float z2 = z * z;
+  return offset + ((((8.05374449538e-2f * z2 - 1.38776856032e-1f) * z2 + 1.99777106478e-1f) * z2 -
+                    3.33329491539e-1f) * z2 * z + z);
+}
+
+// atan2(y, x) ∈ [0, π] for y ≥ 0: relative accuracy for small results, absolute near π/2 and π.
+TYN_FUNC float tyn_scattering_lut_atan2(float y, float x) {
+  float ax = abs(x);
+  float lo = min(y, ax);
+  float hi = max(y, ax);
+  float a = hi > 0.0f ? tyn_scattering_lut_atan01(lo / hi) : 0.0f;
+  if (y > ax) a = (TYN_HALF_PI_HI - a) + TYN_HALF_PI_LO;
+  if (x < 0.0f) a = (2.0f * TYN_HALF_PI_HI - a) + 2.0f * TYN_HALF_PI_LO;
+  return a;
+}
 
 // ---- The medium, as plain parameters (C++ tests build it; GLSL: tyn_medium_from_frame) ----
 
@@ -215,9 +281,9 @@ TYN_FUNC vec3 tyn_medium_phase_scattering(TynMedium m, float cos_theta) {
 
 // P at the angle (θ, u = π − θ), each accurate on its own side of π/2.
 TYN_FUNC vec3 tyn_medium_phase_scattering_at(TynMedium m, vec2 angle) {
-  float half_sin = sin(0.5f * angle.x);  // sin(θ/2)
-  float half_cos = sin(0.5f * angle.y);  // cos(θ/2) = sin(u/2)
-  float cos_theta = angle.x <= TYN_HALF_PI ? cos(angle.x) : -cos(angle.y);
+  float half_sin = tyn_scattering_lut_sin(0.5f * angle.x);  // sin(θ/2)
+  float half_cos = tyn_scattering_lut_sin(0.5f * angle.y);  // cos(θ/2) = sin(u/2)
+  float cos_theta = angle.x <= TYN_HALF_PI ? tyn_scattering_lut_cos(angle.x) : -tyn_scattering_lut_cos(angle.y);
   return tyn_medium_phase_scattering_precise(m, cos_theta, 2.0f * half_sin * half_sin, 2.0f * half_cos * half_cos);
 }
 
@@ -296,7 +362,7 @@ TYN_FUNC float tyn_scattering_lut_norm1(float k, float u) {
   if (u <= 0.0f) return 0.0f;
   float r = 2.0f * k < u ? tyn_scattering_lut_r_small(2.0f * k / u) : tyn_scattering_lut_r_large(u / (2.0f * k));
   float half_u = 0.5f * u;
-  float sin_half = sin(half_u);
+  float sin_half = tyn_scattering_lut_sin(half_u);
   float shape = half_u * half_u / (sin_half * sin_half);  // (u/2)² / sin²(u/2) ∈ [1, π²/4]
   return u * u * r / (u + 2.0f * k * shape);
 }
@@ -326,7 +392,7 @@ TYN_FUNC float tyn_scattering_lut_e2(float x) {
 // Sub-steps for the node interval `from_end` intervals before θ = π. Near π the nodes are evenly
 // spaced in u, so the interval [J, J + 1]·δ has Δu/u = 1/J, and there g ∝ 1/τ² is far from linear
 // in w: the relative error of Ĝ from the trapezoid is about 1/(2 S² J) (measured 3e-3 at J = 9 with
-// S = 4). S = NEAR_PI / √J keeps it below 1e-4 for ~2500 extra sub-steps per row.
+// S = 4). S = NEAR_PI / √J keeps it below 1e-4 for ~1300 extra sub-steps per row (5415 in all).
 TYN_CONST float TYN_SCATTERING_LUT_BUILD_NEAR_PI = 71.0f;
 TYN_FUNC int tyn_scattering_lut_build_substeps(int from_end) {
   return max(TYN_SCATTERING_LUT_BUILD_SUBSTEPS,
@@ -355,7 +421,7 @@ TYN_FUNC void tyn_scattering_lut_build_row(TYN_SCATTERING_LUT_ACCESS int row, Ty
   vec3 big_g = p_q * tyn_scattering_lut_norm(k, angle_q.y);
   TYN_SCATTERING_LUT_STORE(ivec2(last - 1, row), p_q);  // Q = Ĝ / N = P there, and in the limit
   // g = P (1 + cos θ) = 2 P sin²(u/2) at the current sub-step end.
-  float sin_half_q = sin(0.5f * angle_q.y);
+  float sin_half_q = tyn_scattering_lut_sin(0.5f * angle_q.y);
   vec3 g_q = p_q * (2.0f * sin_half_q * sin_half_q);
 
   for (int j = last - 2; j >= 0; --j) {
@@ -368,10 +434,10 @@ TYN_FUNC void tyn_scattering_lut_build_row(TYN_SCATTERING_LUT_ACCESS int row, Ty
       vec2 angle_p = i == 0 ? angle_node : vec2(angle_q.x - sub, angle_q.y + sub);
       float step_theta = i == 0 ? (angle_p.x <= TYN_HALF_PI ? angle_q.x - angle_p.x : angle_p.y - angle_q.y)
                                 : sub;
-      float cos_half_p = sin(0.5f * angle_p.y);  // cos(θ/2) = sin(u/2), accurate near π
-      float cos_half_q = sin(0.5f * angle_q.y);
+      float cos_half_p = tyn_scattering_lut_sin(0.5f * angle_p.y);  // cos(θ/2) = sin(u/2), accurate near π
+      float cos_half_q = tyn_scattering_lut_sin(0.5f * angle_q.y);
       // W = tan(θ_q/2) − tan(θ_p/2) = sin(Δθ/2) / (cos(θ_q/2) cos(θ_p/2)), without cancellation.
-      float dw = sin(0.5f * step_theta) / (cos_half_p * cos_half_q);
+      float dw = tyn_scattering_lut_sin(0.5f * step_theta) / (cos_half_p * cos_half_q);
       vec3 p_p = tyn_medium_phase_scattering_at(m, angle_p);
       vec3 g_p = p_p * (2.0f * cos_half_p * cos_half_p);
       vec3 kw = k * dw;
@@ -429,8 +495,8 @@ TYN_FUNC TynLightPoint tyn_light_point(TynLightRay r, float t) {
   p.t = t;
   p.s = t - r.t_light;
   p.d = sqrt(p.s * p.s + r.h * r.h);
-  p.theta = atan(r.h, -p.s);
-  p.u = atan(r.h, p.s);
+  p.theta = tyn_scattering_lut_atan2(r.h, -p.s);
+  p.u = tyn_scattering_lut_atan2(r.h, p.s);
   p.path = t + p.d;
   // s + d cancels when s < 0: (d + s)(d − s) = h².
   p.foot = p.s >= 0.0f ? p.s + p.d : r.h * r.h / (p.d - p.s);
@@ -553,12 +619,14 @@ TYN_FUNC vec2 tyn_spot_cone_interval(TynLightRay r, TynSpotCone cone, float cos_
 // offset e is passed rather than f1: foot values carry ε f of rounding, a difference of two of them
 // 1e-4 of itself on a short section far from the light (measured: it broke the pieces' tiling).
 TYN_FUNC float tyn_local_light_angle_between(TynLightRay r, float f0, float e) {
-  return 2.0f * atan(max(e, 0.0f) * r.h, r.h * r.h + f0 * (f0 + e));
+  return 2.0f * tyn_scattering_lut_atan2(max(e, 0.0f) * r.h, r.h * r.h + f0 * (f0 + e));
 }
 
 // The foot value h tan(θ/2) of the angle (θ, u), from the side of π/2 where it is accurate.
 TYN_FUNC float tyn_local_light_foot_of_angle(TynLightRay r, vec2 angle) {
-  return angle.x <= TYN_HALF_PI ? r.h * tan(0.5f * angle.x) : r.h / tan(0.5f * angle.y);
+  float half_angle = 0.5f * (angle.x <= TYN_HALF_PI ? angle.x : angle.y);
+  float ratio = tyn_scattering_lut_sin(half_angle) / tyn_scattering_lut_cos(half_angle);  // tan(half_angle)
+  return angle.x <= TYN_HALF_PI ? r.h * ratio : r.h / ratio;
 }
 
 // A quadrature node: the angle (θ, u = π − θ, each accurate on its own side of π/2) and the light's
@@ -579,12 +647,12 @@ TYN_FUNC TynLightNode tyn_local_light_node(TynLightRay r, TynLightPoint a, TynLi
   TynLightNode n;
   if (a.theta + phi <= TYN_HALF_PI) {
     n.angle = vec2(a.theta + phi, 2.0f * TYN_HALF_PI - (a.theta + phi));
-    n.sin_theta = sin(n.angle.x);
+    n.sin_theta = tyn_scattering_lut_sin(n.angle.x);
   } else {
     n.angle = vec2(2.0f * TYN_HALF_PI - (b.u + psi), b.u + psi);
-    n.sin_theta = sin(n.angle.y);
+    n.sin_theta = tyn_scattering_lut_sin(n.angle.y);
   }
-  float sin_phi = phi <= TYN_HALF_PI ? sin(phi) : sin(a.theta + b.u + psi);
+  float sin_phi = phi <= TYN_HALF_PI ? tyn_scattering_lut_sin(phi) : tyn_scattering_lut_sin(a.theta + b.u + psi);
   float t = a.t + a.d * sin_phi / n.sin_theta;
   n.path = t + r.h / n.sin_theta;
   return n;
@@ -646,7 +714,7 @@ TYN_FUNC vec3 tyn_local_light_quadrature(TynMedium m, TynLightRay r, TynSpotCone
       TynLightNode node = tyn_local_light_node(r, a, b, phi0 + half_width + offset, psi1 + half_width - offset);
       vec3 value = tyn_medium_phase_scattering_at(m, node.angle) * exp(-m.sigma_t * node.path);
       if (use_falloff) {
-        float cos_theta = node.angle.x <= TYN_HALF_PI ? cos(node.angle.x) : -cos(node.angle.y);
+        float cos_theta = node.angle.x <= TYN_HALF_PI ? tyn_scattering_lut_cos(node.angle.x) : -tyn_scattering_lut_cos(node.angle.y);
         value *= tyn_spot_falloff_of(cone, tyn_spot_cos_angle(cone, cos_theta, node.sin_theta));
       }
       piece += (n < 2 ? w0 : w1) * value;

@@ -163,6 +163,28 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarTree,
                            return name;
                          });
 
+// The spot light's semi-analytic table is built only when a spot light needs it and only when the
+// medium changed: in the first frame of a context, not in the next ones; never for a directional
+// light.
+TEST(EpipolarScatteringTable, BuiltOnceForASpotLightOnly) {
+  auto recorded = [](const samples::RenderResult& r) {
+    const auto& p = r.stats.passesRecorded;
+    return std::find(p.begin(), p.end(), "epipolar_scattering_lut") != p.end();
+  };
+  samples::RenderOptions o = options(Technique::Epipolar);
+  o.width = 96;
+  o.height = 54;
+  o.shadowMapSize = 256;
+  const host::Scene spot = loadTestScene("spot-lamp");
+  o.frames = 1;
+  EXPECT_TRUE(recorded(renderWithAovs(spot, o)));
+  o.frames = 2;
+  EXPECT_FALSE(recorded(renderWithAovs(spot, o)));
+  o.frames = 1;
+  EXPECT_FALSE(recorded(renderWithAovs(loadTestScene("analytic-mixed"), o)));
+  expectNoValidationMessages();
+}
+
 // Turns the camera so that the light (where its light comes from) appears at `ndc` (Vulkan NDC,
 // y down; beyond ±1 is off screen), or, with `behind`, so that the light is behind the camera
 // and its mirrored epipole appears there.

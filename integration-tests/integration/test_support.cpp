@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <memory>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
+
+#include "tyndall_effect.h"
 
 namespace tyndall::test {
 
@@ -80,9 +84,33 @@ host::Scene withEpipoleAt(host::Scene scene, glm::dvec2 ndc, bool behind, std::u
 }
 
 samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOptions options) {
+  // A context per render: compiling only the pipelines a test's techniques use keeps the suite
+  // fast on lavapipe (every technique's, up front, takes seconds per context).
+  options.pipelineCreation = PipelineCreation::OnFirstUse;
   samples::RenderResult result;
   std::string error;
   EXPECT_TRUE(samples::renderScene(validatedDevice(), scene, options, true, result, error)) << error;
+  return result;
+}
+
+samples::RenderResult renderWithSharedContext(const host::Scene& scene, samples::RenderOptions options) {
+  // The device first: function-local statics are destroyed in reverse order, the contexts before it.
+  host::Device& device = validatedDevice();
+  using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, VkFormat>;
+  static std::map<Key, std::unique_ptr<samples::TyndallEffect>> effects;
+  samples::RenderResult result;
+  std::string error;
+  const host::RenderSettings settings = samples::renderSettingsFor(options, true);
+  const Key key{settings.width, settings.height, settings.framesInFlight, settings.backBufferFormat};
+  std::unique_ptr<samples::TyndallEffect>& effect = effects[key];
+  if (!effect) {
+    effect = samples::TyndallEffect::create(device, settings, options.profile, error, PipelineCreation::OnFirstUse);
+  }
+  if (!effect) {
+    ADD_FAILURE() << error;
+    return result;
+  }
+  EXPECT_TRUE(samples::renderScene(device, scene, options, true, *effect, result, error)) << error;
   return result;
 }
 

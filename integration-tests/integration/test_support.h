@@ -41,4 +41,12 @@ host::Scene withEpipoleAt(host::Scene scene, glm::dvec2 ndc, bool behind, std::u
 /// Renders `frames` frames with the options' profile and reads the AOVs back.
 samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOptions options);
 
+/// renderWithAovs through one Tyndall context per process and context description (output size,
+/// frames in flight, back-buffer format), created by the first render that needs it, as an engine
+/// keeps one context while its scenes and settings change. The context compiles each pipeline on
+/// first use (seconds per pipeline on lavapipe with validation, against well under a second for a
+/// 320×180 frame), so a test that renders many times with one technique compiles its pipelines
+/// once. A test about what a fresh context renders uses renderWithAovs. `stats.frameIndex` counts every frame of the shared context.
+samples::RenderResult renderWithSharedContext(const host::Scene& scene, samples::RenderOptions options);
+
 }  // namespace tyndall::test

@@ -128,12 +128,15 @@ struct Context::Impl {
   }
 
   Outcome createSizeIndependent();
+  Outcome warmUp();
+  /// The pipelines `technique` needs for this frame's light, compiled now if they are not yet.
+  Outcome ensurePipelines(Technique technique, const FrameDesc& frame);
   Outcome createSizeDependent();
   void destroySizeDependent();
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
-                        const gpu::EpipolarConstants& epipolarConstants);
+                        const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable);
   void recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets);
 };
 
@@ -169,6 +172,9 @@ Outcome Context::Impl::createSizeIndependent() {
   if (Outcome o = epipolar.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = prefiltered.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
+  if (desc.pipelineCreation == PipelineCreation::AtCreate) {
+    if (Outcome o = warmUp(); !o) return o;
+  }
   if (desc.backBufferFormat != VK_FORMAT_UNDEFINED) {
     if ((gpu.optimalFeatures(desc.backBufferFormat) & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT) == 0) {
       return failure(Status::UnsupportedFormat, "backBufferFormat has no COLOR_ATTACHMENT_BLEND support");
@@ -176,6 +182,32 @@ Outcome Context::Impl::createSizeIndependent() {
     if (Outcome o = composite.ensurePipeline(gpu, desc.backBufferFormat); !o) return o;
   }
   return {};
+}
+
+Outcome Context::Impl::warmUp() {
+  if (Outcome o = reference.createPipelines(gpu); !o) return o;
+  if (Outcome o = epipolar.createPipelines(gpu); !o) return o;
+  if (!prefiltered.pipelinesReady()) return prefiltered.createPipelines(gpu);
+  return {};
+}
+
+Outcome Context::Impl::ensurePipelines(Technique technique, const FrameDesc& frame) {
+  bool compiled = false;
+  Outcome outcome;
+  if (technique == Technique::Reference) {
+    outcome = reference.ensurePipeline(gpu, frame.light.type, compiled);
+  } else if (technique == Technique::Epipolar) {
+    outcome = epipolar.ensurePipelines(gpu, frame.light.type, !frame.lightColor.empty(), compiled);
+  } else if (technique == Technique::Prefiltered && !prefiltered.pipelinesReady()) {
+    compiled = true;
+    outcome = prefiltered.createPipelines(gpu);
+  }
+  if (compiled) {
+    report(Severity::Warning, std::string("pipelines of the ") + to_string(technique) +
+                                  " technique compiled during record (PipelineCreation::OnFirstUse; call warmUp "
+                                  "to compile them up front)");
+  }
+  return outcome;
 }
 
 Outcome Context::Impl::createSizeDependent() {
@@ -338,6 +370,9 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     technique = Technique::Reference;
     note += "; output smaller than 2x2: Reference instead of epipolar";
   }
+  if (setup.attenuates) {
+    if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);
+  }
   const bool drawsDebugView = frame.debugView != DebugView::None && technique == Technique::Epipolar;
   if (frame.debugView != DebugView::None && !drawsDebugView) note += "; debug view: drawn by the epipolar technique only";
   if (drawsDebugView && debugImage.image == VK_NULL_HANDLE) {
@@ -349,6 +384,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     report(Severity::Info, "debug view image allocated");
   }
   gpu::EpipolarConstants epipolarK{};
+  bool buildScatteringTable = false;
   if (technique == Technique::Epipolar) {
     epipolarK = epipolarConstants(frame, epipolarSettings);
     note += epipolarMarchNote(epipolarK, epipolarSettings);
@@ -356,6 +392,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, stats.frameIndex, desc.maxFramesInFlight);
         !o) {
       return fail(o);
+    }
+    // Only in a frame that records the scattering passes (the table is marked built here).
+    if (setup.attenuates) {
+      if (Outcome o = epipolar.prepareScatteringTable(gpu, frame, buildScatteringTable); !o) return fail(o);
     }
   }
 
@@ -385,7 +425,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.technique = technique;
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
-    recordScattering(cmd, slot, frame, technique, epipolarK);
+    recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable);
     recordAovs(cmd, frame, true);
   }
 
@@ -398,7 +438,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 }
 
 void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                                     Technique technique, const gpu::EpipolarConstants& epipolarConstants) {
+                                     Technique technique, const gpu::EpipolarConstants& epipolarConstants,
+                                     bool buildScatteringTable) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
 
@@ -474,7 +515,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   } else if (technique == Technique::Prefiltered) {
     prefiltered.record(gpu, cmd, slot, bindings, extent, timer, stats.passesRecorded);
   } else {
-    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, frame.light.type, extent, timer,
+    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, frame.light.type, buildScatteringTable, extent, timer,
                     stats.passesRecorded);
   }
   releaseDepth(frame.depth, bindings.depthLayout);
@@ -574,6 +615,11 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool
   }
   timer.endPass(gpu, cmd);
   stats.passesRecorded.emplace_back(pass);
+}
+
+Outcome Context::warmUp() {
+  if (Outcome o = impl_->warmUp(); !o) return impl_->fail(o);
+  return {};
 }
 
 void Context::collectTimings() {

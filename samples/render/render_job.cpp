@@ -296,31 +296,36 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
   return true;
 }
 
-bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
-                 RenderResult& result, std::string& error) {
-  const bool aovs = wantAovs || !options.aovScattering.empty() || !options.aovTransmittance.empty() ||
-                    options.debugView != DebugView::None;
+host::RenderSettings renderSettingsFor(const RenderOptions& options, bool wantAovs) {
   host::RenderSettings settings;
   settings.width = options.width;
   settings.height = options.height;
   settings.shadowMapSize = options.shadowMapSize;
   settings.depth = options.depth;
   settings.infiniteFar = options.infiniteFar;
-  settings.aovImages = aovs;
+  settings.aovImages = wantAovs || !options.aovScattering.empty() || !options.aovTransmittance.empty() ||
+                       options.debugView != DebugView::None;
   settings.backBufferFormat = options.backBufferFormat;
   settings.framesInFlight = options.framesInFlight;
+  return settings;
+}
 
+namespace {
+
+// renderScene with `effect` (null: none, the host alone), set up from the options.
+bool renderSceneWith(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
+                     TyndallEffect* effect, RenderResult& result, std::string& error) {
+  const host::RenderSettings settings = renderSettingsFor(options, wantAovs);
+  const bool aovs = settings.aovImages;
   std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
   if (!renderer) return false;
-  std::unique_ptr<TyndallEffect> effect;
-  if (!options.noEffect) {
-    effect = TyndallEffect::create(device, settings, options.profile, error);
-    if (!effect) return false;
+  if (effect) {
+    effect->setProfile(options.profile);
     effect->setTechnique(options.technique);
     effect->setEpipolarSettings(options.epipolar);
     effect->setDebugView(options.debugView);
     effect->setPrefilteredSettings(options.prefiltered);
-    renderer->addPostProcess(effect.get());
+    renderer->addPostProcess(effect);
   }
 
   using Clock = std::chrono::steady_clock;
@@ -352,6 +357,28 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
   }
   if (options.debugView != DebugView::None && !renderer->readAovDebug(result.debugView, error)) return false;
   return true;
+}
+
+}  // namespace
+
+bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
+                 RenderResult& result, std::string& error) {
+  std::unique_ptr<TyndallEffect> effect;
+  if (!options.noEffect) {
+    effect = TyndallEffect::create(device, renderSettingsFor(options, wantAovs), options.profile, error,
+                                   options.pipelineCreation);
+    if (!effect) return false;
+  }
+  return renderSceneWith(device, scene, options, wantAovs, effect.get(), result, error);
+}
+
+bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
+                 TyndallEffect& effect, RenderResult& result, std::string& error) {
+  if (options.noEffect) {
+    error = "renderScene: an effect was given to a render without one (noEffect)";
+    return false;
+  }
+  return renderSceneWith(device, scene, options, wantAovs, &effect, result, error);
 }
 
 std::string timingsJson(const RenderOptions& options, const RenderResult& result) {

@@ -13,6 +13,8 @@
 
 namespace tyndall::samples {
 
+class TyndallEffect;
+
 struct RenderOptions {
   std::string scenePath;
   Profile profile = Profile::Balanced;  ///< the default profile
@@ -37,6 +39,9 @@ struct RenderOptions {
   std::string debugViewPng;
   VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  ///< not on the command line
   std::uint32_t framesInFlight = 2;                           ///< not on the command line
+  /// Not on the command line: tyndall-render compiles every pipeline up front; the tests, which
+  /// create a context per render and use one or two techniques, compile on first use.
+  PipelineCreation pipelineCreation = PipelineCreation::AtCreate;
 };
 
 /// Parses argv. Returns false with a one-line reason; `help` is set for --help.
@@ -56,10 +61,23 @@ struct RenderResult {
   std::string deviceName;
 };
 
+/// The stub host's settings for the options (AOV images when the options name an AOV file or
+/// `wantAovs` is set).
+host::RenderSettings renderSettingsFor(const RenderOptions& options, bool wantAovs);
+
 /// Renders `options.frames` frames of `scene` on `device`. AOVs are read back when the options
 /// name an AOV file or `wantAovs` is set.
 bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
                  RenderResult& result, std::string& error);
+
+/// The same through an existing effect instead of a new one, as an engine keeps one Tyndall context
+/// while its scenes and settings change: the context (and the pipelines it built when created) serves
+/// render after render. The effect must have been created on `device` with the render settings'
+/// size, frames in flight and back-buffer format (renderSettingsFor); its profile, technique and
+/// settings are set from the options. `result.stats` are the context's: counters such as
+/// `frameIndex` run on from the renders before.
+bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
+                 TyndallEffect& effect, RenderResult& result, std::string& error);
 
 /// Median per pass and of the total over the timed frames, as JSON text.
 std::string timingsJson(const RenderOptions& options, const RenderResult& result);

@@ -4,13 +4,16 @@
 // march runs along that line in its 1D parameter u: with the tree, fully lit sections are
 // integrated in one step, fully shadowed ones skipped and mixed ones descended; without it, every
 // cell is tested (the same lit set: the tree is exact). Lit sections of a directional light are
-// integrated in closed form; a spot light's by quadrature of the exact integrand; with a
+// integrated in closed form; a spot light's from yusov2013's semi-analytic table; with a
 // light-colour texture lit sections are walked at the fine step, each part times its colour
 // (yusov2013 "Colored Light Shafts"). Point lights
 // (six maps, no single line) and slices without a line in the map use the Reference's texel walk.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 #include "reference/reference_march.glsl"
+
+// Specialised per light-colour texture: with one, lit sections are walked at the fine step.
+layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
 
 // The slice and the view ray being marched, for the accessors of min_max_tree.h below.
 int g_slice;
@@ -22,14 +25,29 @@ vec3 g_ray_direction;
 // u = (a0 + a1 t) / (p + q t); its inverse gives a spot light's lit section back in t.
 vec4 g_u_of_t;  // (a0, a1, p, q)
 
+#define TYN_SCATTERING_LUT_FETCH(texel) imageLoad(scattering_lut, texel).rgb
+#define TYN_SCATTERING_LUT_FRAME
+#include "epipolar/scattering_lut.h"
+
+// A spot light's medium, ray and cone for the table (hoisted out of the march).
+TynMedium g_medium;
+TynLightRay g_light_ray;
+TynSpotCone g_cone;
+
 float tyn_march_t_of_u(float u) {
   return (g_u_of_t.x - u * g_u_of_t.z) / (u * g_u_of_t.w - g_u_of_t.y);
 }
 
+// A spot light's lit section: from the semi-analytic table (inside the inner cone) and quadrature
+// (in the penumbra), yusov2013; with a light-colour texture the colour varies along the section, so
+// it is integrated by quadrature with the colour at every node instead.
 vec3 tyn_march_local_light(float u_a, float u_b) {
   float t_a = tyn_march_t_of_u(u_a);
   float t_b = tyn_march_t_of_u(u_b);
-  return tyn_local_light_segment(g_ray_origin, g_ray_direction, min(t_a, t_b), max(t_a, t_b));
+  float a = max(min(t_a, t_b), 0.0);
+  float b = max(t_a, t_b);
+  if (TYN_MARCH_LIGHT_COLOR) return tyn_local_light_segment(g_ray_origin, g_ray_direction, a, b);
+  return frame.light_radiance.rgb * tyn_spot_segment(g_medium, g_light_ray, g_cone, a, b);
 }
 
 // The light-colour texture at the slice line's 1D position u, for a directional light's lit parts;
@@ -47,8 +65,7 @@ vec3 tyn_march_light_color(float u) {
 // The pipeline is specialised per light type (TYN_LIGHT_TYPE, common/medium.glsl), so that the
 // compiler drops the other integral: a run-time choice here costs the directional march several
 // times its time on a CPU driver, whose vectorised code evaluates both sides of the branch.
-// Specialised too: with a light-colour texture lit sections are walked at the fine step.
-layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
+
 #define TYN_MIN_MAX_INTEGRATE(ray, a, b) \
   (TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL ? tyn_march_local_light(a, b) : tyn_min_max_directional_integral(ray, a, b))
 #include "epipolar/min_max_tree.h"
@@ -64,6 +81,11 @@ vec3 tyn_march_along_slice(int slice, vec4 origin_direction, vec3 origin, vec3 d
   g_step_texels = tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w));
   g_ray_origin = origin;
   g_ray_direction = dir;
+  if (TYN_LIGHT_TYPE == TYN_LIGHT_SPOT) {
+    g_medium = tyn_medium_from_frame();
+    g_light_ray = tyn_light_ray(origin, dir, frame.light_position.xyz);
+    g_cone = tyn_spot_cone_from_frame(g_light_ray, dir);
+  }
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
 
   // The part of the ray inside the map (a directional light's square slab, a spot light's

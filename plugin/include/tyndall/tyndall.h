@@ -198,6 +198,17 @@ const char* to_string(PrefilteredBasis basis) noexcept;
 // Context creation
 // ---------------------------------------------------------------------------------------------
 
+/// When the techniques' compute pipelines are compiled.
+enum class PipelineCreation : std::uint32_t {
+  /// Every technique's pipelines in `Context::create` (default): no frame ever compiles one, so
+  /// switching profiles or techniques never hitches.
+  AtCreate,
+  /// A technique's pipelines in the first frame that runs it (a Warning through the message
+  /// callback says so), or all of them in `Context::warmUp`: a faster start where only some
+  /// techniques run (tools, tests).
+  OnFirstUse,
+};
+
 /// Everything Tyndall needs from the host, once.
 ///
 /// IMPORTANT: the device must be Vulkan 1.3 (or 1.2 with VK_KHR_dynamic_rendering) and created
@@ -216,6 +227,7 @@ struct ContextDesc {
   VkPipelineCache pipelineCache = VK_NULL_HANDLE;             ///< optional
   const VkAllocationCallbacks* allocator = nullptr;           ///< optional
   MessageCallback messageCallback = nullptr;                  ///< optional
+  PipelineCreation pipelineCreation = PipelineCreation::AtCreate;  ///< default AtCreate
   void* messageUserData = nullptr;                            ///< passed back to `messageCallback`
 };
 
@@ -400,6 +412,10 @@ class Context {
   /// Rebuilds only the size-dependent resources. The host guarantees the GPU no longer uses
   /// anything recorded by this context (as for destruction).
   Outcome resize(VkExtent2D outputExtent);
+
+  /// Compiles every pipeline not compiled yet (see PipelineCreation); nothing to do after an
+  /// AtCreate context's creation. Call it outside frames, e.g. behind a loading screen.
+  Outcome warmUp();
 
   /// Records this frame's passes into `commandBuffer` (outside any render pass, compute and
   /// graphics capable queue). Frames use `maxFramesInFlight` slots in turn.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "epipolar/scattering_lut.h"
 #include "tyndall_shaders.h"
 
 namespace tyndall {
@@ -10,7 +11,7 @@ namespace {
 
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
-constexpr std::uint32_t kBindings = 16;
+constexpr std::uint32_t kBindings = 17;
 // The march list's header: VkDispatchIndirectCommand, then the count (epipolar_common.glsl).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
@@ -69,6 +70,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
       {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
       {14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
+      {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = kBindings;
@@ -85,42 +87,10 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 13> pipelines{{
-      {&slicePipeline_, shaders::slice_end_points_comp()},
-      {&coordinatesPipeline_, shaders::coordinates_comp()},
-      {&refinePipeline_, shaders::refine_comp()},
-      {&sliceUvPipeline_, shaders::slice_uv_comp()},
-      {&treePipeline_, shaders::min_max_tree_comp()},
-      {&marchArgsPipeline_, shaders::march_args_comp()},
-      {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
-      {&interpolatePipeline_, shaders::interpolate_comp()},
-      {&unwarpPipeline_, shaders::unwarp_comp()},
-      {&fixupArgsPipeline_, shaders::fixup_args_comp()},
-      {&debugBackgroundPipeline_, shaders::debug_background_comp()},
-      {&debugSamplesPipeline_, shaders::debug_samples_comp()},
-      {&debugFixupPipeline_, shaders::debug_fixup_comp()},
-  }};
-  for (const auto& [pipeline, spirv] : pipelines) {
-    if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
-  }
-  // march.comp per light type (TYN_LIGHT_TYPE) and light-colour texture (TYN_MARCH_LIGHT_COLOR,
-  // constant_id 1); the fix-up per light type.
-  for (std::uint32_t type = 0; type < marchPipelines_.size(); ++type) {
-    for (std::uint32_t colored = 0; colored < 2; ++colored) {
-      const std::array<std::pair<std::uint32_t, std::uint32_t>, 2> constants{{{kLightTypeConstantId, type}, {1, colored}}};
-      if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::march_comp(), constants,
-                                                marchPipelines_[type][colored]);
-          !o) {
-        return o;
-      }
-    }
-  }
-  if (Outcome o = createLightPipelines(gpu, pipelineLayout_, shaders::fixup_comp(), fixupPipelines_); !o) return o;
-
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 9},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 10},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
   }};
   sets_.resize(slots);
@@ -133,8 +103,73 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
       return o;
     }
   }
+  if (Outcome o = createImage(gpu, VK_FORMAT_R32G32B32A32_SFLOAT, {1, 1}, kSampleUsage, scatteringLutPlaceholder_); !o) {
+    return o;
+  }
   return createDeviceBuffer(gpu, 3 * sizeof(std::uint32_t),
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, fixupArgs_);
+}
+
+Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
+  if (commonReady_) return {};
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 14> pipelines{{
+      {&slicePipeline_, shaders::slice_end_points_comp()},
+      {&coordinatesPipeline_, shaders::coordinates_comp()},
+      {&refinePipeline_, shaders::refine_comp()},
+      {&sliceUvPipeline_, shaders::slice_uv_comp()},
+      {&treePipeline_, shaders::min_max_tree_comp()},
+      {&marchArgsPipeline_, shaders::march_args_comp()},
+      {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
+      {&interpolatePipeline_, shaders::interpolate_comp()},
+      {&unwarpPipeline_, shaders::unwarp_comp()},
+      {&fixupArgsPipeline_, shaders::fixup_args_comp()},
+      {&scatteringLutPipeline_, shaders::scattering_lut_comp()},
+      {&debugBackgroundPipeline_, shaders::debug_background_comp()},
+      {&debugSamplesPipeline_, shaders::debug_samples_comp()},
+      {&debugFixupPipeline_, shaders::debug_fixup_comp()},
+  }};
+  for (const auto& [pipeline, spirv] : pipelines) {
+    if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
+  }
+  commonReady_ = true;
+  return {};
+}
+
+// march.comp per light type (TYN_LIGHT_TYPE) and light-colour texture (TYN_MARCH_LIGHT_COLOR,
+// constant_id 1); the fix-up per light type.
+Outcome EpipolarTechnique::ensurePipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled) {
+  compiled = !commonReady_;
+  if (Outcome o = createCommonPipelines(gpu); !o) return o;
+  const auto type = static_cast<std::uint32_t>(light);
+  VkPipeline& march = marchPipelines_[type][colored ? 1 : 0];
+  if (march == VK_NULL_HANDLE) {
+    compiled = true;
+    const std::array<std::pair<std::uint32_t, std::uint32_t>, 2> constants{
+        {{kLightTypeConstantId, type}, {1, colored ? 1u : 0u}}};
+    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::march_comp(), constants, march); !o) {
+      return o;
+    }
+  }
+  if (fixupPipelines_[type] == VK_NULL_HANDLE) {
+    compiled = true;
+    const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> constants{{{kLightTypeConstantId, type}}};
+    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::fixup_comp(), constants,
+                                              fixupPipelines_[type]);
+        !o) {
+      return o;
+    }
+  }
+  return {};
+}
+
+Outcome EpipolarTechnique::createPipelines(const Gpu& gpu) {
+  bool compiled = false;
+  for (LightType light : {LightType::Directional, LightType::Spot, LightType::Point}) {
+    for (bool colored : {false, true}) {
+      if (Outcome o = ensurePipelines(gpu, light, colored, compiled); !o) return o;
+    }
+  }
+  return {};
 }
 
 void EpipolarTechnique::destroyTextures(const Gpu& gpu, SampleTextures& textures) {
@@ -156,12 +191,14 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   destroyTextures(gpu, textures_);
   destroySizeDependent(gpu);
   destroyBuffer(gpu, fixupArgs_);
+  destroyImage(gpu, scatteringLut_);
+  destroyImage(gpu, scatteringLutPlaceholder_);
   for (MappedBuffer& buffer : fixupReadback_) destroyBuffer(gpu, buffer);
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
                               marchArgsPipeline_, refineIntensityPipeline_, interpolatePipeline_, unwarpPipeline_,
-                              fixupArgsPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
+                              fixupArgsPipeline_, scatteringLutPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
                               debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
@@ -236,6 +273,30 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   return {};
 }
 
+Outcome EpipolarTechnique::prepareScatteringTable(const Gpu& gpu, const FrameDesc& frame, bool& build) {
+  build = false;
+  if (frame.light.type != LightType::Spot || frame.shadowMaps.empty()) return {};
+  if (scatteringLut_.image == VK_NULL_HANDLE) {
+    if (Outcome o = createImage(gpu, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                {gpu::TYN_SCATTERING_LUT_WIDTH, gpu::TYN_SCATTERING_LUT_HEIGHT}, kSampleUsage,
+                                scatteringLut_);
+        !o) {
+      return o;
+    }
+  }
+  // The table depends on the medium only: σ_s, σ_a, phase and g of every component.
+  std::vector<float> medium;
+  for (const MediumComponent& c : frame.medium) {
+    medium.insert(medium.end(), c.scattering.begin(), c.scattering.end());
+    medium.insert(medium.end(), c.absorption.begin(), c.absorption.end());
+    medium.push_back(static_cast<float>(c.phase));
+    medium.push_back(c.g);
+  }
+  build = medium != scatteringLutMedium_;
+  if (build) scatteringLutMedium_ = std::move(medium);
+  return {};
+}
+
 bool EpipolarTechnique::takeCounts(std::uint32_t slot, std::uint32_t& fixedUp, std::uint32_t& marched) {
   if (slot >= fixupPending_.size() || !fixupPending_[slot]) return false;
   fixupPending_[slot] = false;
@@ -287,16 +348,20 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   write(12, 12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &tree;
   write(13, 13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &marchList;
   write(14, 15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1).pImageInfo = &lightColor;
+  const VkDescriptorImageInfo lut{VK_NULL_HANDLE,
+                                  (scatteringLut_.view != VK_NULL_HANDLE ? scatteringLut_ : scatteringLutPlaceholder_).view,
+                                  VK_IMAGE_LAYOUT_GENERAL};
+  write(15, 16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &lut;
   // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
   const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};
-  std::uint32_t count = kBindings - 1;
+  std::uint32_t count = kBindings - 1;  // binding 14, the debug view, only when drawn
   if (b.debug != VK_NULL_HANDLE) write(count++, 14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &debug;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, count, writes.data(), 0, nullptr);
 }
 
 void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
-                               const gpu::EpipolarConstants& constants, LightType light, VkExtent2D extent,
-                               GpuTimer& timer, std::vector<std::string>& passes) {
+                               const gpu::EpipolarConstants& constants, LightType light, bool buildTable,
+                               VkExtent2D extent, GpuTimer& timer, std::vector<std::string>& passes) {
   writeDescriptors(gpu, slot, bindings);
   const VkDescriptorSet set = sets_[slot];
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
@@ -322,6 +387,16 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
                  {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
   }
+  if (!placeholderInitialised_) {
+    imageBarrier(gpu, cmd, scatteringLutPlaceholder_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                 {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0}, {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
+    placeholderInitialised_ = true;
+  }
+  if (buildTable) {
+    // Earlier frames' reads of the old table finish first; its contents are discarded.
+    imageBarrier(gpu, cmd, scatteringLut_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                 {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0}, {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
+  }
   // The counts start at zero; the previous frame's indirect read must be done first.
   memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                 VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
@@ -334,6 +409,11 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_refine", refinePipeline_,
        [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+  if (buildTable) {
+    pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
+      gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
+    });
+  }
   // Each slice's line in the shadow map and its min/max tree: only for the lights that march
   // along one line (directional, spot), the tree only when the march uses it.
   if (constants.tree.x != 0) {

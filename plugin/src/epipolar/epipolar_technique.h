@@ -26,6 +26,11 @@ class EpipolarTechnique {
 
   /// `linear`: the light-colour texture's sampler (linear, clamp to edge).
   Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots);
+  /// Compiles every pipeline of the technique (context creation, Context::warmUp).
+  Outcome createPipelines(const Gpu& gpu);
+  /// Compiles what a frame with this light needs and is not compiled yet (PipelineCreation::
+  /// OnFirstUse); `compiled` says whether anything was.
+  Outcome ensurePipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled);
   void destroy(const Gpu& gpu);
   /// The fix-up list holds every pixel: rebuilt with the output extent.
   Outcome resize(const Gpu& gpu, VkExtent2D extent);
@@ -38,9 +43,15 @@ class EpipolarTechnique {
 
   /// Records every pass; each is timed and appended to `passes`. The host inputs must already
   /// be readable by compute shaders and the targets writable (GENERAL).
+  /// `buildTable`: from prepareScatteringTable.
   void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
-              const gpu::EpipolarConstants& constants, LightType light, VkExtent2D extent, GpuTimer& timer,
-              std::vector<std::string>& passes);
+              const gpu::EpipolarConstants& constants, LightType light, bool buildTable, VkExtent2D extent,
+              GpuTimer& timer, std::vector<std::string>& passes);
+
+  /// A spot light's march reads the semi-analytic scattering table (yusov2013), built for the
+  /// frame's medium: creates the table at the first spot light and says whether this frame must
+  /// (re)build it (the medium changed since the last build).
+  Outcome prepareScatteringTable(const Gpu& gpu, const FrameDesc& frame, bool& build);
 
   /// Pixels the fix-up pass handled and samples ray-marched in the slot's previous frame (it has
   /// completed when the slot comes round again); false when unknown.
@@ -66,9 +77,11 @@ class EpipolarTechnique {
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);
   void destroySizeDependent(const Gpu& gpu);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
+  Outcome createCommonPipelines(const Gpu& gpu);
 
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  bool commonReady_ = false;  // every pipeline but march's and the fix-up's light variants
   VkPipeline slicePipeline_ = VK_NULL_HANDLE;
   VkPipeline coordinatesPipeline_ = VK_NULL_HANDLE;
   VkPipeline refinePipeline_ = VK_NULL_HANDLE;
@@ -82,6 +95,7 @@ class EpipolarTechnique {
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
   LightPipelines fixupPipelines_{};  // per light type
+  VkPipeline scatteringLutPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugBackgroundPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugSamplesPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugFixupPipeline_ = VK_NULL_HANDLE;
@@ -90,6 +104,12 @@ class EpipolarTechnique {
   std::vector<MappedBuffer> fixupReadback_;  // per slot: fix-up and marched counts, read a lap later
   std::vector<bool> fixupPending_;
   MappedBuffer fixupArgs_;                   // VkDispatchIndirectCommand
+  // The spot light's scattering table (RGBA32F, TYN_SCATTERING_LUT_WIDTH × HEIGHT, GENERAL),
+  // created at the first spot light; until then a 1×1 placeholder keeps binding 16 valid.
+  OwnedImage scatteringLut_;
+  OwnedImage scatteringLutPlaceholder_;
+  bool placeholderInitialised_ = false;
+  std::vector<float> scatteringLutMedium_;   // what the table was built for; empty: never built
   // Size-dependent.
   MappedBuffer fixupList_;                   // count, then one packed pixel per entry
   SampleTextures textures_;

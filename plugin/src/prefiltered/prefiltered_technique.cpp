@@ -185,29 +185,6 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  // Every pipeline up front, so that no frame compiles one.
-  auto make = [&](std::span<const std::uint32_t> spirv, VkPipeline& out, const VkSpecializationInfo* spec = nullptr) {
-    return createComputePipeline(gpu, pipelineLayout_, spirv, out, spec);
-  };
-  if (Outcome o = make(shaders::moment_shadow_map_comp(), momentMapPipeline_); !o) return o;
-  if (Outcome o = make(shaders::epipole_fixup_args_comp(), fixupArgsPipeline_); !o) return o;
-  if (Outcome o = make(shaders::epipole_fixup_comp(), fixupPipeline_); !o) return o;
-  // prefix_sums.glsl's workgroup size (constant_id 0: threads per row, 1: rows per group).
-  const std::array<VkSpecializationMapEntry, 2> sizeEntries{{{0, 0, 4}, {1, 4, 4}}};
-  const std::array<std::uint32_t, 2> rowParallel{gpu::TYN_PF_ROW_THREADS, gpu::TYN_PF_ROWS_PER_GROUP};
-  const std::array<std::uint32_t, 2> threadPerRow{1u, gpu::TYN_PF_THREAD_PER_ROW_GROUP};
-  const VkSpecializationInfo rowParallelSpec{2, sizeEntries.data(), sizeof(rowParallel), rowParallel.data()};
-  const VkSpecializationInfo threadPerRowSpec{2, sizeEntries.data(), sizeof(threadPerRow), threadPerRow.data()};
-  // evaluate.comp's storage variant (constant_id 0).
-  const VkSpecializationMapEntry basisEntry{0, 0, 4};
-  for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
-    if (Outcome o = make(kStorage[i].rectify(), rectifyPipelines_[i]); !o) return o;
-    if (Outcome o = make(kStorage[i].prefixSums(), rowParallelPipelines_[i], &rowParallelSpec); !o) return o;
-    if (Outcome o = make(kStorage[i].prefixSums(), threadPerRowPipelines_[i], &threadPerRowSpec); !o) return o;
-    const VkSpecializationInfo basisSpec{1, &basisEntry, sizeof(i), &i};
-    if (Outcome o = make(shaders::evaluate_comp(), evaluatePipelines_[i], &basisSpec); !o) return o;
-  }
-
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps + 6},
@@ -234,6 +211,33 @@ void PrefilteredTechnique::destroyMaps(const Gpu& gpu, Maps& maps) {
   destroyImage(gpu, maps.rectifiedA);
   destroyImage(gpu, maps.momentMap);
   maps = Maps{};
+}
+
+Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
+  auto make = [&](std::span<const std::uint32_t> spirv, VkPipeline& out, const VkSpecializationInfo* spec = nullptr) {
+    return createComputePipeline(gpu, pipelineLayout_, spirv, out, spec);
+  };
+  if (Outcome o = make(shaders::moment_shadow_map_comp(), momentMapPipeline_); !o) return o;
+  if (Outcome o = make(shaders::epipole_fixup_args_comp(), fixupArgsPipeline_); !o) return o;
+  if (Outcome o = make(shaders::epipole_fixup_comp(), fixupPipeline_); !o) return o;
+  // prefix_sums.glsl's workgroup size (constant_id 0: threads per row, 1: rows per group).
+  const std::array<VkSpecializationMapEntry, 2> sizeEntries{{{0, 0, 4}, {1, 4, 4}}};
+  const std::array<std::uint32_t, 2> rowParallel{gpu::TYN_PF_ROW_THREADS, gpu::TYN_PF_ROWS_PER_GROUP};
+  const std::array<std::uint32_t, 2> threadPerRow{1u, gpu::TYN_PF_THREAD_PER_ROW_GROUP};
+  const VkSpecializationInfo rowParallelSpec{2, sizeEntries.data(), sizeof(rowParallel), rowParallel.data()};
+  const VkSpecializationInfo threadPerRowSpec{2, sizeEntries.data(), sizeof(threadPerRow), threadPerRow.data()};
+  // evaluate.comp's storage variant (constant_id 0).
+  const VkSpecializationMapEntry basisEntry{0, 0, 4};
+  for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
+    if (Outcome o = make(kStorage[i].rectify(), rectifyPipelines_[i]); !o) return o;
+    if (Outcome o = make(kStorage[i].prefixSums(), rowParallelPipelines_[i], &rowParallelSpec); !o) return o;
+    if (Outcome o = make(kStorage[i].prefixSums(), threadPerRowPipelines_[i], &threadPerRowSpec); !o) return o;
+    const VkSpecializationInfo basisSpec{1, &basisEntry, sizeof(i), &i};
+    if (Outcome o = make(shaders::evaluate_comp(), evaluatePipelines_[i], &basisSpec); !o) return o;
+  }
+
+  pipelinesReady_ = true;
+  return {};
 }
 
 void PrefilteredTechnique::destroy(const Gpu& gpu) {

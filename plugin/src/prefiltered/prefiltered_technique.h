@@ -31,6 +31,10 @@ class PrefilteredTechnique {
   /// `lightColorSampler`: linear, clamp to edge (the epipole block's Reference walk reads the
   /// light-colour texture through it).
   Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler lightColorSampler, std::uint32_t slots);
+  /// Compiles the technique's pipelines (at context creation, in Context::warmUp, or in the first
+  /// frame that runs it with PipelineCreation::OnFirstUse).
+  Outcome createPipelines(const Gpu& gpu);
+  [[nodiscard]] bool pipelinesReady() const { return pipelinesReady_; }
   void destroy(const Gpu& gpu);
 
   /// The frame's CPU set-up: rectification bounds and the projective/non-linear choice, the
@@ -73,6 +77,7 @@ class PrefilteredTechnique {
   VkSampler prefixSampler_ = VK_NULL_HANDLE;  // linear, clamp along u, repeat along v
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
+  bool pipelinesReady_ = false;
   VkPipeline momentMapPipeline_ = VK_NULL_HANDLE;
   std::array<VkPipeline, 6> rectifyPipelines_{};           // per storage variant
   std::array<VkPipeline, 6> rowParallelPipelines_{};       // prefix sums, peters2017 App. C

@@ -27,9 +27,6 @@ Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linea
   result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
   if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
 
-  if (Outcome o = createLightPipelines(gpu, pipelineLayout_, shaders::reference_scattering_comp(), pipelines_); !o) {
-    return o;
-  }
   const std::array<VkDescriptorPoolSize, 3> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
@@ -37,6 +34,23 @@ Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linea
   }};
   sets_.resize(slots);
   return allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_);
+}
+
+Outcome ReferencePass::ensurePipeline(const Gpu& gpu, LightType light, bool& compiled) {
+  VkPipeline& pipeline = pipelines_[static_cast<std::size_t>(light)];
+  compiled = pipeline == VK_NULL_HANDLE;
+  if (!compiled) return {};
+  const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> constants{
+      {{kLightTypeConstantId, static_cast<std::uint32_t>(light)}}};
+  return createSpecializedPipeline(gpu, pipelineLayout_, shaders::reference_scattering_comp(), constants, pipeline);
+}
+
+Outcome ReferencePass::createPipelines(const Gpu& gpu) {
+  bool compiled = false;
+  for (LightType light : {LightType::Directional, LightType::Spot, LightType::Point}) {
+    if (Outcome o = ensurePipeline(gpu, light, compiled); !o) return o;
+  }
+  return {};
 }
 
 void ReferencePass::destroy(const Gpu& gpu) {

@@ -15,6 +15,9 @@ class ReferencePass {
 
   /// `linear`: the light-colour texture's sampler (linear, clamp to edge).
   Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots);
+  /// Compiles the pipeline of every light type (see EpipolarTechnique::createPipelines), or one.
+  Outcome createPipelines(const Gpu& gpu);
+  Outcome ensurePipeline(const Gpu& gpu, LightType light, bool& compiled);
   void destroy(const Gpu& gpu);
   /// Updates the slot's descriptors and dispatches one thread per pixel.
   void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,

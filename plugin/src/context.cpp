@@ -74,7 +74,8 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.epipole = gpu::tyn_epipole(lightClip);
   k.counts = glm::uvec4(settings.slices, settings.samplesPerSlice, settings.improvedSamplePlacement ? 1u : 0u,
                         settings.initialSampleStep);
-  k.refinement = glm::vec4(settings.refinementThreshold, settings.intensityRefinementThreshold, 0.0f, 0.0f);
+  k.refinement = glm::vec4(settings.refinementThreshold, settings.intensityRefinementThreshold,
+                           settings.sliceContrastThreshold, 0.0f);
   k.params = glm::vec4(settings.epipoleDensity, settings.bilateralDepthThreshold, settings.fixupWeightThreshold,
                          settings.epipoleFixupRadius);
   // Directional and spot lights march along each slice's line in shadow map 0; a point light's

@@ -76,10 +76,11 @@ bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::
     else if (key == "max-tree-step") ok = uintField(s.maxTreeStep);
     else if (key == "bilateral") ok = parseFloat(value, s.bilateralDepthThreshold);
     else if (key == "fixup-weight") ok = parseFloat(value, s.fixupWeightThreshold);
+    else if (key == "slice-contrast") ok = parseFloat(value, s.sliceContrastThreshold);
     else if (key == "epipole-radius") ok = parseFloat(value, s.epipoleFixupRadius);
     else {
       error = "--epipolar: unknown key '" + key + "' (keys: slices, samples, initial-step, refinement, "
-              "intensity-refinement, density, improved-placement, tree, max-tree-step, bilateral, fixup-weight, epipole-radius)";
+              "intensity-refinement, density, improved-placement, tree, max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius)";
       return false;
     }
     if (!ok) {
@@ -178,7 +179,7 @@ std::string usage() {
          "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
          "    slices, samples, initial-step, refinement, intensity-refinement, density, improved-placement (0|1),\n"
          "    tree (0|1),"
-         "    max-tree-step, bilateral, fixup-weight, epipole-radius\n"
+         "    max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius\n"
          "  --prefiltered sets the prefiltered technique's parameters (the rest keep PrefilteredSettings' defaults):\n"
          "    basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32),\n"
          "    rectification (automatic|non-linear|projective), rows, columns, filtered (0|1),\n"

@@ -31,7 +31,9 @@ struct EpipolarConstants {
                      // w: radius in pixels around an on-screen epipole that is always fixed up
   vec4 refinement;   // x: relative depth break between neighbouring samples that makes both
                      // of them ray-marched samples; y: relative L_in difference between
-                     // neighbouring ray-marched samples that subdivides the interval (second round)
+                     // neighbouring ray-marched samples that subdivides the interval (second round);
+                     // z: relative L_in difference between a pixel's two slices that sends it to
+                     // the fix-up pass (1: never)
   uvec4 tree;        // x: 1D samples per slice L (a power of two ≥ the shadow-map size), 0 when
                      //    the marched samples use the Reference's walk instead (point lights);
                      // y: highest tree level the march may use (yusov2013's maximum step);

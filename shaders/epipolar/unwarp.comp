@@ -2,8 +2,9 @@
 // Unwarp (engelhardt2010 §4.3, yusov2013): every pixel interpolates L_in from the two epipolar
 // slices it lies between and the two samples around it on each, bilinearly, keeping only taps
 // whose view-ray length is close to the pixel's (a bilateral filter on depth). A pixel left
-// with too little weight (a depth break no sample saw) is appended to the fix-up list. T is
-// exact per pixel.
+// with too little weight (a depth break no sample saw), or whose two slices disagree by more than
+// the slice-contrast threshold (a shaft or colour edge between them, narrower than their spacing),
+// is appended to the fix-up list. T is exact per pixel.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
@@ -30,6 +31,8 @@ void main() {
 
   vec3 sum = vec3(0.0);
   float weight_sum = 0.0;
+  vec3 slice_sum[2] = vec3[2](vec3(0.0), vec3(0.0));
+  float slice_weight_sum[2] = float[2](0.0, 0.0);
   for (int s = 0; s < 2; ++s) {
     uint slice = s == 0 ? pair.x : pair.y;
     float slice_weight = s == 0 ? 1.0 - second : second;
@@ -53,9 +56,19 @@ void main() {
       // Taps on another surface than the pixel's do not count: relative ray-length difference.
       bool same_surface = abs(coordinates.z - distance) <= epipolar.params.y * distance;
       if (coordinates.w < 0.5 || !same_surface || tap_weight <= 0.0) continue;
-      sum += tap_weight * imageLoad(epipolar_scattering, ivec2(int(index), int(slice))).rgb;
+      vec3 value = tap_weight * imageLoad(epipolar_scattering, ivec2(int(index), int(slice))).rgb;
+      sum += value;
       weight_sum += tap_weight;
+      slice_sum[s] += value;
+      slice_weight_sum[s] += tap_weight;
     }
+  }
+  // Both slices seen: their interpolated L_in, compared channel by channel against the larger.
+  bool slice_edge = false;
+  if (epipolar.refinement.z < 1.0 && slice_weight_sum[0] > 0.0 && slice_weight_sum[1] > 0.0) {
+    vec3 a = slice_sum[0] / slice_weight_sum[0];
+    vec3 b = slice_sum[1] / slice_weight_sum[1];
+    slice_edge = any(greaterThan(abs(a - b), epipolar.refinement.z * max(max(a, b), vec3(1e-30))));
   }
 
   // Next to the projected light, in-scattering varies faster than any sample spacing can follow
@@ -63,7 +76,7 @@ void main() {
   // Fig. 8). The light may sit just off screen and still have such pixels; at infinity it has none.
   bool near_epipole = epipolar.epipole.z > 1e-6 &&
                       length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.params.w;
-  if (weight_sum >= epipolar.params.z && !near_epipole) {
+  if (weight_sum >= epipolar.params.z && !near_epipole && !slice_edge) {
     imageStore(out_scattering, ivec2(pixel), vec4(sum / weight_sum, 0.0));
   } else {
     uint slot = atomicAdd(fixup_count, 1u);

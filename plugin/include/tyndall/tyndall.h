@@ -104,6 +104,11 @@ struct EpipolarSettings {
   /// A pixel whose bilateral weights sum to less than this is ray-marched by the fix-up pass,
   /// (0, 1], default 0.05.
   float fixupWeightThreshold = 0.05f;
+  /// A pixel whose two slices' interpolated L_in differ (in any channel) by more than this fraction
+  /// of the larger is ray-marched by the fix-up pass: a shaft or colour edge runs between the slices,
+  /// narrower than their spacing (fine coloured shafts). (0, 1], default 1 (off): the pixels near
+  /// every shaft edge are fixed up, which costs more where shafts are many.
+  float sliceContrastThreshold = 1.0f;
   /// Pixels within this many pixels of the projected light (on screen or just off it) are
   /// ray-marched by the fix-up pass (klehm2014's epipole block), [0, 256], default 8.
   float epipoleFixupRadius = 8.0f;

@@ -34,6 +34,9 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   if (!(s.fixupWeightThreshold > 0.0f && s.fixupWeightThreshold <= 1.0f)) {
     return invalid("epipolar.fixupWeightThreshold must be in (0, 1]");
   }
+  if (!(s.sliceContrastThreshold > 0.0f && s.sliceContrastThreshold <= 1.0f)) {
+    return invalid("epipolar.sliceContrastThreshold must be in (0, 1]");
+  }
   if (s.initialSampleStep < 1 || s.initialSampleStep > 4096) return invalid("epipolar.initialSampleStep must be in 1..4096");
   if (!(s.refinementThreshold > 0.0f && s.refinementThreshold <= 1.0f)) {
     return invalid("epipolar.refinementThreshold must be in (0, 1]");

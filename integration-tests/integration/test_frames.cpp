@@ -1,6 +1,13 @@
 // Frames in flight, timings, resize, back-buffer formats, depth conventions, and the passes a
 // frame records when the medium needs less.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <iterator>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -167,6 +174,121 @@ TEST(Profiles, EveryProfileRunsAndSaysWhichTechnique) {
     EXPECT_NE(result.stats.techniqueNote.find(profile == Profile::Reference ? "brute force" : "epipolar"),
               std::string::npos)
         << result.stats.techniqueNote;
+  }
+  expectNoValidationMessages();
+}
+
+// Switches the profile (and now and then the technique) of the effect it wraps every frame, and
+// keeps what each frame asked for and what ran.
+class SwitchingEffect final : public host::PostProcessEffect {
+ public:
+  struct Frame {
+    Profile profile;
+    Technique technique;  // asked for: None lets the profile decide
+    Stats stats;
+  };
+  explicit SwitchingEffect(samples::TyndallEffect& inner) : inner_(inner) {}
+
+  bool record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) override {
+    static constexpr Profile kCycle[] = {Profile::High, Profile::Reference, Profile::Balanced, Profile::Performance,
+                                         Profile::Auto};
+    const std::size_t n = frames.size();
+    const Frame frame{kCycle[n % std::size(kCycle)], n % 7 == 6 ? Technique::Prefiltered : Technique::None, {}};
+    inner_.setProfile(frame.profile);
+    inner_.setTechnique(frame.technique);
+    if (!inner_.record(cmd, inputs, error)) return false;
+    frames.push_back(frame);
+    frames.back().stats = inner_.context().stats();
+    return true;
+  }
+  bool resize(VkExtent2D extent, std::string& error) override { return inner_.resize(extent, error); }
+
+  std::vector<Frame> frames;
+
+ private:
+  samples::TyndallEffect& inner_;
+};
+
+// Run-time switching: the profile changes every frame for 100 frames, two frames in flight, one
+// context whose pipelines were all built at creation. No frame compiles a pipeline (the context
+// would say so through its callback), every frame runs what its profile or technique names, and
+// synchronization validation sees nothing (the sample textures of each profile are kept and
+// reused while other profiles' frames are in flight).
+TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  host::RenderSettings settings;
+  settings.width = 64;
+  settings.height = 36;
+  settings.shadowMapSize = 256;
+  settings.framesInFlight = 2;
+  std::string error;
+  host::Device& device = validatedDevice();
+  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
+  ASSERT_TRUE(renderer) << error;
+  std::unique_ptr<samples::TyndallEffect> effect =
+      samples::TyndallEffect::create(device, settings, Profile::Balanced, error, PipelineCreation::AtCreate);
+  ASSERT_TRUE(effect) << error;
+  SwitchingEffect switching(*effect);
+  renderer->addPostProcess(&switching);
+  for (int frame = 0; frame < 100; ++frame) ASSERT_TRUE(renderer->renderFrame(error)) << "frame " << frame << ": " << error;
+  renderer->waitIdle();
+
+  ASSERT_EQ(switching.frames.size(), 100u);
+  for (std::size_t i = 0; i < switching.frames.size(); ++i) {
+    const SwitchingEffect::Frame& f = switching.frames[i];
+    SCOPED_TRACE("frame " + std::to_string(i) + ", " + to_string(f.profile));
+    EXPECT_EQ(f.stats.frameIndex, i + 1);
+    EXPECT_EQ(f.stats.requestedProfile, f.profile);
+    const Technique expected = f.technique != Technique::None ? f.technique
+                               : f.profile == Profile::Reference ? Technique::Reference
+                                                                 : Technique::Epipolar;
+    EXPECT_EQ(f.stats.technique, expected) << f.stats.techniqueNote;
+  }
+  for (const std::string& message : effect->messages()) {
+    EXPECT_EQ(message.find("compiled during record"), std::string::npos) << message;
+  }
+  expectNoValidationMessages();
+}
+
+// Profile::Auto against the plugin's own timestamps: budgets that force each profile. The profiles'
+// times are measured first in the same context; the middle budget lies between Balanced's and
+// High's, so that Auto must settle on Balanced. One context throughout (Auto keeps what it measured
+// when the budget changes, as in an engine).
+TEST(Profiles, AutoFitsTheBudget) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  samples::RenderOptions o = smallOptions(160, 90);
+  o.shadowMapSize = 512;
+  o.frames = 9;
+  auto medianTotal = [](const samples::RenderResult& r) {
+    std::vector<double> totals;
+    for (std::size_t i = 2; i < r.timings.size(); ++i) totals.push_back(r.timings[i].totalMilliseconds);
+    std::sort(totals.begin(), totals.end());
+    return totals.empty() ? 0.0 : totals[totals.size() / 2];
+  };
+  std::map<Profile, double> ms;
+  for (Profile p : {Profile::High, Profile::Balanced}) {
+    o.profile = p;
+    ms[p] = medianTotal(renderWithSharedContext(scene, o));
+    std::printf("[ auto ] %s: %.2f ms\n", to_string(p), ms[p]);
+  }
+  // The middle budget needs High clearly dearer than Balanced (measured 2–3x on lavapipe).
+  ASSERT_GT(ms[Profile::High], 1.5 * ms[Profile::Balanced]);
+  // Auto climbs to a profile measured within 80% of the budget (tyndall.h, Profile::Auto): 80% of
+  // this budget lies between the two times.
+  const double middle = std::sqrt(ms[Profile::High] * ms[Profile::Balanced]) / 0.8;
+
+  o.profile = Profile::Auto;
+  o.frames = 40;
+  for (const auto& [budget, expected] : {std::pair{1e6, Profile::High}, std::pair{1e-3, Profile::Performance},
+                                         std::pair{middle, Profile::Balanced}}) {
+    o.autoBudgetMilliseconds = static_cast<float>(budget);
+    const samples::RenderResult r = renderWithSharedContext(scene, o);
+    std::printf("[ auto ] budget %.3g ms -> %s: %s\n", budget, to_string(r.stats.profileUsed),
+                r.stats.techniqueNote.c_str());
+    EXPECT_EQ(r.stats.requestedProfile, Profile::Auto);
+    EXPECT_EQ(r.stats.profileUsed, expected) << "budget " << budget << " ms: " << r.stats.techniqueNote;
+    EXPECT_NE(r.stats.techniqueNote.find(std::string("-> ") + to_string(expected)), std::string::npos)
+        << r.stats.techniqueNote;
   }
   expectNoValidationMessages();
 }

@@ -1,8 +1,11 @@
 // The context: what is created once, what is rebuilt on resize, and the per-frame recording.
 #include <array>
+#include <cstdio>
 #include <cstring>
+#include <string>
 #include <new>
 
+#include "auto_profile.h"
 #include "composite/composite_pass.h"
 #include "epipolar/epipolar_geometry.h"
 #include "epipolar/epipolar_technique.h"
@@ -114,6 +117,8 @@ struct Context::Impl {
   EpipolarTechnique epipolar;
   PrefilteredTechnique prefiltered;
   CompositePass composite;
+  AutoProfile autoProfile;
+  std::uint64_t lastTimedFrame = ~0ull;  // the latest frame whose time went to autoProfile
   // Size-dependent.
   OwnedImage scattering;
   OwnedImage transmittance;
@@ -349,11 +354,27 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   }
 
   const std::uint32_t slot = static_cast<std::uint32_t>(stats.frameIndex % desc.maxFramesInFlight);
-  const ProfileChoice& choice = profileChoice(frame.profile);
+  // Auto picks a profile from the times its earlier frames measured (auto_profile.h).
+  const Profile profile = frame.profile == Profile::Auto
+                              ? autoProfile.choose(stats.frameIndex, frame.autoBudgetMilliseconds)
+                              : frame.profile;
+  const ProfileChoice& choice = profileChoice(profile);
   Technique technique = frame.technique != Technique::None ? frame.technique : choice.technique;
   std::string note = frame.technique != Technique::None ? std::string("technique set by the frame: ") +
                                                               to_string(frame.technique)
                                                         : std::string(choice.note);
+  if (frame.profile == Profile::Auto) {
+    char line[160];
+    const double estimate = autoProfile.estimateMs(profile);
+    if (estimate >= 0.0) {
+      std::snprintf(line, sizeof(line), "Auto within %.3g ms -> %s (measured %.3g ms); ",
+                    double(frame.autoBudgetMilliseconds), to_string(profile), estimate);
+    } else {
+      std::snprintf(line, sizeof(line), "Auto within %.3g ms -> %s (not measured yet); ",
+                    double(frame.autoBudgetMilliseconds), to_string(profile));
+    }
+    note = line + note;
+  }
   const EpipolarSettings& epipolarSettings = frame.epipolar != nullptr ? *frame.epipolar : choice.epipolar;
   if (technique == Technique::Prefiltered && frame.light.type != LightType::Directional) {
     // Rectified shadow maps are built for directional lights only (a design fallback, DESIGN.md
@@ -410,6 +431,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   }
 
   stats.requestedProfile = frame.profile;
+  stats.profileUsed = profile;
   stats.passesRecorded.clear();
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
   if (std::uint32_t fixedUp = 0, marched = 0; epipolar.takeCounts(slot, fixedUp, marched)) {
@@ -433,6 +455,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   if (const FrameTimings* latest = timer.latest()) {
     stats.lastTimings = *latest;
     stats.timingsValid = true;
+    if (latest->frameIndex != lastTimedFrame) {
+      autoProfile.measured(latest->frameIndex, latest->totalMilliseconds);
+      lastTimedFrame = latest->frameIndex;
+    }
   }
   ++stats.frameIndex;
   return {};

@@ -18,7 +18,7 @@ struct ProfileChoice {
   PrefilteredSettings prefiltered{};
 };
 
-/// The row for a profile (Auto resolves like the others until it has measurements to use).
+/// The row for a profile (the context resolves Auto to High, Balanced or Performance first).
 const ProfileChoice& profileChoice(Profile profile);
 
 }  // namespace tyndall

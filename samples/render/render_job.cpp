@@ -169,13 +169,14 @@ double median(std::vector<double> values) {
 }  // namespace
 
 std::string usage() {
-  return "usage: tyndall-render SCENE.json [--profile reference|high|balanced|performance|auto]\n"
+  return "usage: tyndall-render SCENE.json [--profile reference|high|balanced|performance|auto] [--budget-ms B]\n"
          "         [--technique reference|epipolar|prefiltered] [--width W] [--height H] [--shadow-map-size N]\n"
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
          "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--prefiltered KEY=VALUE[,KEY=VALUE...]]\n"
          "         [--debug-view samples|fixup FILE.png]\n"
+         "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
          "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
          "    slices, samples, initial-step, refinement, intensity-refinement, density, improved-placement (0|1),\n"
          "    tree (0|1),"
@@ -208,6 +209,13 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       if (!value(v)) return false;
       if (!parseProfile(v, options.profile)) {
         error = "--profile must be one of reference, high, balanced, performance, auto (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--budget-ms") {
+      if (!value(v)) return false;
+      if (!parseFloat(v, options.autoBudgetMilliseconds) || !(options.autoBudgetMilliseconds > 0.0f) ||
+          !std::isfinite(options.autoBudgetMilliseconds)) {
+        error = "--budget-ms must be a number > 0 (got '" + v + "')";
         return false;
       }
     } else if (arg == "--technique") {
@@ -322,6 +330,7 @@ bool renderSceneWith(host::Device& device, const host::Scene& scene, const Rende
   if (!renderer) return false;
   if (effect) {
     effect->setProfile(options.profile);
+    effect->setAutoBudget(options.autoBudgetMilliseconds);
     effect->setTechnique(options.technique);
     effect->setEpipolarSettings(options.epipolar);
     effect->setDebugView(options.debugView);
@@ -393,6 +402,7 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["device"] = result.deviceName;
   json["scene"] = options.scenePath;
   json["profile"] = to_string(options.profile);
+  json["profileUsed"] = to_string(result.stats.profileUsed);
   json["technique"] = to_string(result.stats.technique);
   json["techniqueNote"] = result.stats.techniqueNote;
   json["width"] = options.width;

@@ -18,6 +18,7 @@ class TyndallEffect;
 struct RenderOptions {
   std::string scenePath;
   Profile profile = Profile::Balanced;  ///< the default profile
+  float autoBudgetMilliseconds = 4.0f;  ///< Profile::Auto's budget (FrameDesc's default)
   Technique technique = Technique::None; ///< --technique: overrides the profile's choice
   std::optional<EpipolarSettings> epipolar;  ///< --epipolar: instead of the profile's
   std::optional<PrefilteredSettings> prefiltered;  ///< --prefiltered: instead of the profile's

@@ -135,6 +135,7 @@ FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, 
 bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) {
   FrameStorage storage;
   FrameDesc frame = makeFrameDesc(inputs, profile_, storage);
+  frame.autoBudgetMilliseconds = autoBudget_;
   frame.technique = technique_;
   if (epipolar_) frame.epipolar = &*epipolar_;
   if (debugView_ != DebugView::None) {

@@ -23,6 +23,8 @@ class TyndallEffect final : public host::PostProcessEffect {
   bool resize(VkExtent2D extent, std::string& error) override;
 
   void setProfile(Profile profile) { profile_ = profile; }
+  /// Profile::Auto's GPU-time budget in milliseconds.
+  void setAutoBudget(float milliseconds) { autoBudget_ = milliseconds; }
   /// Technique::None lets the profile decide.
   void setTechnique(Technique technique) { technique_ = technique; }
   /// Parameters of the epipolar technique instead of the profile's (empty: the profile's).
@@ -40,6 +42,7 @@ class TyndallEffect final : public host::PostProcessEffect {
 
   std::unique_ptr<Context> context_;
   Profile profile_ = Profile::Balanced;
+  float autoBudget_ = 4.0f;
   Technique technique_ = Technique::None;
   std::optional<EpipolarSettings> epipolar_;
   DebugView debugView_ = DebugView::None;

@@ -61,7 +61,12 @@ enum class Profile : std::uint32_t {
   High,
   Balanced,
   Performance,
-  Auto,         ///< best quality that fits `FrameDesc::autoBudgetMilliseconds`
+  /// The most accurate of High, Balanced and Performance whose GPU time, measured by this
+  /// context's timestamps, fits `FrameDesc::autoBudgetMilliseconds`: it starts at Balanced, steps
+  /// down when the current profile's time exceeds the budget, and up when the better one measured
+  /// at most 80% of the budget (or, unmeasured or measured over 300 frames ago, when the current
+  /// one uses at most half); it holds each choice 8 frames. `Stats::profileUsed` says which ran.
+  Auto,
 };
 
 /// A technique: what a profile maps to, and what ran for a frame.
@@ -349,7 +354,8 @@ struct FrameDesc {
   ImageRef lightColor;
 
   Profile profile = Profile::Balanced;
-  /// GPU-time budget for Profile::Auto in milliseconds, > 0, default 4.
+  /// GPU-time budget for Profile::Auto in milliseconds (Tyndall's passes, as in
+  /// `FrameTimings::totalMilliseconds`), > 0, default 4.
   float autoBudgetMilliseconds = 4.0f;
   /// Optional: runs this technique instead of the profile's (validation, benchmarks). None: the
   /// profile decides.
@@ -381,6 +387,8 @@ struct FrameTimings {
 struct Stats {
   std::uint64_t frameIndex = 0;       ///< frames recorded so far by this context
   Profile requestedProfile = Profile::Balanced;
+  /// The profile whose settings ran: the requested one, or the one Auto chose within its budget.
+  Profile profileUsed = Profile::Balanced;
   Technique technique = Technique::None;
   /// Why that technique ran (e.g. "profile table: Balanced -> Reference until the epipolar
   /// technique lands"); empty when nothing was recorded.

@@ -1,5 +1,6 @@
 #include "epipolar/epipolar_technique.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "epipolar/scattering_lut.h"
@@ -14,6 +15,9 @@ constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr std::uint32_t kBindings = 17;
 // The march list's header: VkDispatchIndirectCommand, then the count (epipolar_common.glsl).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
+// Sample-texture sets of other sizes kept for a switch back (profiles differ in slices and
+// samples): High, Balanced and Performance each keep theirs while the others run.
+constexpr std::size_t kSpareTextureSets = 2;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
@@ -224,24 +228,40 @@ Outcome EpipolarTechnique::resize(const Gpu& gpu, VkExtent2D extent) {
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
                                    std::uint64_t frameIndex, std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
-  // Frame f has completed once frame f + framesInFlight is being recorded.
-  std::erase_if(retired_, [&](Retired& retired) {
-    if (retired.lastFrame + framesInFlight > frameIndex) return false;
-    destroyTextures(gpu, retired.textures);
-    return true;
-  });
   // A tree of L 1D samples takes L − 1 texels per row; without one a 1 × 1 texture keeps the
   // descriptor valid.
   const std::uint32_t treeWidth = treeSamples > 1 ? treeSamples - 1 : 1;
   const std::uint32_t treeRows = treeSamples > 1 ? settings.slices : 1;
-  if (textures_.slices == settings.slices && textures_.samples == settings.samplesPerSlice &&
-      textures_.treeWidth == treeWidth) {
-    return {};
+  auto fits = [&](const SampleTextures& t) {
+    return t.slices == settings.slices && t.samples == settings.samplesPerSlice && t.treeWidth == treeWidth;
+  };
+  if (!fits(textures_)) {
+    if (textures_.slices != 0) {
+      retired_.push_back({frameIndex == 0 ? 0 : frameIndex - 1, textures_});
+      textures_ = SampleTextures{};
+    }
+    // A set of these sizes retired by an earlier switch serves again, so that switching between
+    // profiles allocates nothing once each has run. Frames still in flight with it are ordered
+    // before this one by the barriers every frame starts with (as for a set kept frame to frame).
+    auto spare = std::find_if(retired_.begin(), retired_.end(), [&](const Retired& r) { return fits(r.textures); });
+    if (spare != retired_.end()) {
+      textures_ = spare->textures;
+      retired_.erase(spare);
+    }
   }
-  if (textures_.slices != 0) {
-    retired_.push_back({frameIndex == 0 ? 0 : frameIndex - 1, textures_});
-    textures_ = SampleTextures{};
+  // The kSpareTextureSets most recently retired sets are kept; older ones are destroyed once no
+  // frame in flight uses them (frame f has completed once frame f + framesInFlight is recorded).
+  std::size_t excess = retired_.size() > kSpareTextureSets ? retired_.size() - kSpareTextureSets : 0;
+  for (auto it = retired_.begin(); excess > 0 && it != retired_.end();) {
+    if (it->lastFrame + framesInFlight <= frameIndex) {
+      destroyTextures(gpu, it->textures);
+      it = retired_.erase(it);
+      --excess;
+    } else {
+      ++it;
+    }
   }
+  if (textures_.slices != 0) return {};
   SampleTextures fresh;
   fresh.slices = settings.slices;
   fresh.samples = settings.samplesPerSlice;

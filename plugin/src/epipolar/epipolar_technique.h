@@ -113,7 +113,7 @@ class EpipolarTechnique {
   // Size-dependent.
   MappedBuffer fixupList_;                   // count, then one packed pixel per entry
   SampleTextures textures_;
-  std::vector<Retired> retired_;
+  std::vector<Retired> retired_;  // oldest first; see kSpareTextureSets
   std::uint64_t frameIndex_ = 0;
 };
 

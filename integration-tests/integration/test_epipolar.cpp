@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
 #include <utility>
 #include <vector>
 #include <tuple>
@@ -227,6 +228,44 @@ TEST(EpipolarSettingsValidation, EachBadValueRecordsNothingAndNamesTheField) {
   samples::RenderResult result;
   std::string error;
   EXPECT_TRUE(samples::renderScene(validatedDevice(), scene, tiny(), true, result, error)) << error;
+  expectNoValidationMessages();
+}
+
+// The passes follow what the frame needs (DESIGN.md "Model only what the scene requires"): a
+// directional light records no scattering table; a frame without in-scattering (σ_s = 0, σ_a > 0)
+// records only the unwarp, which writes the exact T (the Reference's, to the bit) and L_in = 0.
+TEST(EpipolarPasses, FollowTheFrame) {
+  host::Scene scene = loadTestScene("analytic-mixed");
+  samples::RenderOptions o = options(Technique::Epipolar);
+  o.width = 64;
+  o.height = 36;
+  o.shadowMapSize = 256;
+  const samples::RenderResult directional = renderWithSharedContext(scene, o);
+  EXPECT_EQ(directional.stats.passesRecorded,
+            (std::vector<std::string>{"epipolar_slice_end_points", "epipolar_coordinates", "epipolar_refine",
+                                      "epipolar_slice_uv", "epipolar_min_max_tree", "epipolar_march_args",
+                                      "epipolar_march", "epipolar_refine_intensity", "epipolar_march_args_refined",
+                                      "epipolar_march_refined", "epipolar_interpolate", "epipolar_unwarp",
+                                      "epipolar_fixup_args", "epipolar_fixup", "composite", "aov_output"}));
+
+  for (host::MediumComponent& m : scene.medium) {
+    m.absorption += m.scattering;
+    m.scattering = glm::dvec3(0.0);
+  }
+  const samples::RenderResult absorbing = renderWithSharedContext(scene, o);
+  EXPECT_EQ(absorbing.stats.technique, Technique::Epipolar);
+  EXPECT_EQ(absorbing.stats.passesRecorded,
+            (std::vector<std::string>{"epipolar_unwarp", "composite", "aov_output"}));
+  samples::RenderOptions ref = o;
+  ref.technique = Technique::Reference;
+  const samples::RenderResult reference = renderWithSharedContext(scene, ref);
+  EXPECT_EQ(compareRgb(absorbing.transmittance, reference.transmittance).relativeMax, 0.0);
+  double smallestT = 1.0;
+  for (std::size_t i = 0; i < absorbing.scattering.pixels.size(); i += 4) {  // RGBA
+    for (std::size_t c = 0; c < 3; ++c) ASSERT_EQ(absorbing.scattering.pixels[i + c], 0.0f) << "L_in at value " << i;
+    smallestT = std::min(smallestT, double(absorbing.transmittance.pixels[i]));
+  }
+  EXPECT_LT(smallestT, 0.9);  // the medium attenuates: T was computed, not left at 1
   expectNoValidationMessages();
 }
 

@@ -212,8 +212,8 @@ class SwitchingEffect final : public host::PostProcessEffect {
 // Run-time switching: the profile changes every frame for 100 frames, two frames in flight, one
 // context whose pipelines were all built at creation. No frame compiles a pipeline (the context
 // would say so through its callback), every frame runs what its profile or technique names, and
-// synchronization validation sees nothing (the sample textures of each profile are kept and
-// reused while other profiles' frames are in flight).
+// synchronization validation sees nothing, and after the first lap nothing is allocated (the
+// sample textures of each profile are kept and reused while other profiles' frames are in flight).
 TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
   const host::Scene scene = loadTestScene("analytic-spheres");
   host::RenderSettings settings;
@@ -246,6 +246,13 @@ TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
   }
   for (const std::string& message : effect->messages()) {
     EXPECT_EQ(message.find("compiled during record"), std::string::npos) << message;
+  }
+  // Once every profile and the prefiltered technique have run (the first 7 frames), nothing more is
+  // allocated or freed: each profile's textures are kept and reused.
+  const std::uint64_t settled = switching.frames[7].stats.deviceMemoryBytes;
+  EXPECT_GT(settled, 0u);
+  for (std::size_t i = 7; i < switching.frames.size(); ++i) {
+    EXPECT_EQ(switching.frames[i].stats.deviceMemoryBytes, settled) << "frame " << i;
   }
   expectNoValidationMessages();
 }

@@ -142,7 +142,7 @@ struct Context::Impl {
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
-                        const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable);
+                        const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable, bool scatters);
   void recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets);
 };
 
@@ -415,8 +415,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
         !o) {
       return fail(o);
     }
-    // Only in a frame that records the scattering passes (the table is marked built here).
-    if (setup.attenuates) {
+    // Only in a frame that records the march (the table is marked built here).
+    if (setup.attenuates && setup.scatters) {
       if (Outcome o = epipolar.prepareScatteringTable(gpu, frame, buildScatteringTable); !o) return fail(o);
     }
   }
@@ -448,7 +448,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.technique = technique;
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
-    recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable);
+    recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable, setup.scatters);
     recordAovs(cmd, frame, true);
   }
 
@@ -460,13 +460,14 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
       lastTimedFrame = latest->frameIndex;
     }
   }
+  stats.deviceMemoryBytes = gpu.allocatedBytes;
   ++stats.frameIndex;
   return {};
 }
 
 void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
                                      Technique technique, const gpu::EpipolarConstants& epipolarConstants,
-                                     bool buildScatteringTable) {
+                                     bool buildScatteringTable, bool scatters) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
   const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
 
@@ -488,6 +489,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   bindings.depth = frame.depth.view;
   bindings.depthLayout = sampledDepthLayout(frame.depth.layout);
   bindings.light = frame.light.type;
+  bindings.scatters = scatters;
   bindings.scattering = scattering.view;
   bindings.transmittance = transmittance.view;
   auto acquireDepth = [&](const ImageRef& image, VkImageLayout layout) {

@@ -47,7 +47,9 @@ Outcome allocate(const Gpu& gpu, const VkMemoryRequirements& requirements,
   info.allocationSize = requirements.size;
   info.memoryTypeIndex = type;
   VkResult result = gpu.vk.vkAllocateMemory(gpu.device, &info, gpu.allocator, &memory);
-  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateMemory", result);
+  if (result != VK_SUCCESS) return vkFailed("vkAllocateMemory", result);
+  gpu.allocatedBytes += requirements.size;
+  return {};
 }
 
 }  // namespace
@@ -125,7 +127,10 @@ Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std
 void destroyImage(const Gpu& gpu, OwnedImage& image) {
   if (image.view != VK_NULL_HANDLE) gpu.vk.vkDestroyImageView(gpu.device, image.view, gpu.allocator);
   if (image.image != VK_NULL_HANDLE) gpu.vk.vkDestroyImage(gpu.device, image.image, gpu.allocator);
-  if (image.memory != VK_NULL_HANDLE) gpu.vk.vkFreeMemory(gpu.device, image.memory, gpu.allocator);
+  if (image.memory != VK_NULL_HANDLE) {
+    gpu.vk.vkFreeMemory(gpu.device, image.memory, gpu.allocator);
+    gpu.allocatedBytes -= image.bytes;
+  }
   image = OwnedImage{};
 }
 
@@ -144,6 +149,7 @@ Outcome createBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage
   gpu.vk.vkGetBufferMemoryRequirements(gpu.device, out.buffer, &requirements);
   Outcome outcome = allocate(gpu, requirements, memory, out.memory);
   if (!outcome) return outcome;
+  out.bytes = requirements.size;
   result = gpu.vk.vkBindBufferMemory(gpu.device, out.buffer, out.memory, 0);
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkBindBufferMemory", result);
 }
@@ -165,7 +171,10 @@ Outcome createDeviceBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags
 
 void destroyBuffer(const Gpu& gpu, MappedBuffer& buffer) {
   if (buffer.buffer != VK_NULL_HANDLE) gpu.vk.vkDestroyBuffer(gpu.device, buffer.buffer, gpu.allocator);
-  if (buffer.memory != VK_NULL_HANDLE) gpu.vk.vkFreeMemory(gpu.device, buffer.memory, gpu.allocator);
+  if (buffer.memory != VK_NULL_HANDLE) {
+    gpu.vk.vkFreeMemory(gpu.device, buffer.memory, gpu.allocator);
+    gpu.allocatedBytes -= buffer.bytes;
+  }
   buffer = MappedBuffer{};
 }
 

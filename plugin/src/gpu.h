@@ -21,6 +21,9 @@ struct Gpu {
   const VkAllocationCallbacks* allocator = nullptr;
   VkPhysicalDeviceProperties properties{};
   VkPhysicalDeviceMemoryProperties memory{};
+  /// Device memory allocated through createImage / create*Buffer and not freed yet, bytes
+  /// (Stats::deviceMemoryBytes). Counted here because every allocation goes through those helpers.
+  mutable VkDeviceSize allocatedBytes = 0;
 
   VkFormatFeatureFlags optimalFeatures(VkFormat format) const;
 };
@@ -52,6 +55,7 @@ struct MappedBuffer {
   VkDeviceMemory memory = VK_NULL_HANDLE;
   void* mapped = nullptr;
   VkDeviceSize size = 0;
+  VkDeviceSize bytes = 0;  ///< memory allocated for it (≥ size)
 };
 Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage,
                            MappedBuffer& out);
@@ -118,6 +122,8 @@ struct ScatteringBindings {
   VkImageLayout lightColorLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   bool hasLightColor = false;
   LightType light = LightType::Directional;
+  /// Some σ_s > 0 and the light is on: L_in is computed. Otherwise only T is (L_in = 0).
+  bool scatters = true;
   /// The debug view's target (storage, GENERAL) when the frame asks for one, else null.
   VkImageView debug = VK_NULL_HANDLE;
   DebugView debugView = DebugView::None;

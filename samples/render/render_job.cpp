@@ -422,6 +422,7 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
     json["fixedUpPixelFraction"] = result.stats.fixedUpPixelFraction;
   }
   json["totalMilliseconds"] = median(totals);
+  json["deviceMemoryBytes"] = result.stats.deviceMemoryBytes;
   json["wallMillisecondsPerFrame"] = result.wallMillisecondsPerFrame;
   json["tyndallInserted"] = !options.noEffect;
   return json.dump(2) + "\n";

@@ -405,6 +405,9 @@ struct Stats {
   /// Epipolar technique: fraction of the pixels the fix-up pass ray-marched, from the same
   /// earlier frame as `lastTimings`; negative until one is known.
   double fixedUpPixelFraction = -1.0;
+  /// Device memory the context holds after the last `record` (targets, technique textures and
+  /// buffers, spare sets kept for profile switches), in bytes.
+  std::uint64_t deviceMemoryBytes = 0;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -426,71 +426,78 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
   gpu.vk.vkCmdFillBuffer(cmd, textures_.marchList.buffer, 0, kMarchHeaderWords * sizeof(std::uint32_t), 0);
 
-  pass("epipolar_slice_end_points", slicePipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-  pass("epipolar_coordinates", coordinatesPipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
-  pass("epipolar_refine", refinePipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-  if (buildTable) {
-    pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
-      gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
-    });
-  }
-  // Each slice's line in the shadow map and its min/max tree: only for the lights that march
-  // along one line (directional, spot), the tree only when the march uses it.
-  if (constants.tree.x != 0) {
-    pass("epipolar_slice_uv", sliceUvPipeline_,
+  // Without in-scattering (σ_s = 0 or the light off) only the unwarp runs: it writes the exact T
+  // and L_in = 0 (DESIGN.md "Model only what the scene requires").
+  if (bindings.scatters) {
+    pass("epipolar_slice_end_points", slicePipeline_,
          [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-    if (constants.tree.z != 0) {
-      pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+    pass("epipolar_coordinates", coordinatesPipeline_,
+         [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+    pass("epipolar_refine", refinePipeline_,
+         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+    if (buildTable) {
+      pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
+        gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
+      });
     }
+    // Each slice's line in the shadow map and its min/max tree: only for the lights that march
+    // along one line (directional, spot), the tree only when the march uses it.
+    if (constants.tree.x != 0) {
+      pass("epipolar_slice_uv", sliceUvPipeline_,
+           [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+      if (constants.tree.z != 0) {
+        pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+      }
+    }
+    // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
+    // refinement adds.
+    const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
+    auto marchRound = [&](const char* argsName, const char* name) {
+      pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+      timer.beginPass(gpu, cmd, name);
+      memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                    readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+      gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, march);
+      gpu.vk.vkCmdDispatchIndirect(cmd, textures_.marchList.buffer, 0);
+      timer.endPass(gpu, cmd);
+      passes.emplace_back(name);
+    };
+    marchRound("epipolar_march_args", "epipolar_march");
+    if (constants.refinement.y < 1.0f) {
+      pass("epipolar_refine_intensity", refineIntensityPipeline_,
+           [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+      marchRound("epipolar_march_args_refined", "epipolar_march_refined");
+    }
+    pass("epipolar_interpolate", interpolatePipeline_,
+         [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   }
-  // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
-  // refinement adds.
-  const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
-  auto marchRound = [&](const char* argsName, const char* name) {
-    pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-    timer.beginPass(gpu, cmd, name);
-    memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                  readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, march);
-    gpu.vk.vkCmdDispatchIndirect(cmd, textures_.marchList.buffer, 0);
-    timer.endPass(gpu, cmd);
-    passes.emplace_back(name);
-  };
-  marchRound("epipolar_march_args", "epipolar_march");
-  if (constants.refinement.y < 1.0f) {
-    pass("epipolar_refine_intensity", refineIntensityPipeline_,
-         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-    marchRound("epipolar_march_args_refined", "epipolar_march_refined");
-  }
-  pass("epipolar_interpolate", interpolatePipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_unwarp", unwarpPipeline_, [&] {
     gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
-  pass("epipolar_fixup_args", fixupArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+  if (bindings.scatters) {
+    pass("epipolar_fixup_args", fixupArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
 
-  // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
-  timer.beginPass(gpu, cmd, "epipolar_fixup");
-  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipelines_[static_cast<std::size_t>(light)]);
-  gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
-  timer.endPass(gpu, cmd);
-  passes.emplace_back("epipolar_fixup");
+    // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
+    timer.beginPass(gpu, cmd, "epipolar_fixup");
+    memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                  readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipelines_[static_cast<std::size_t>(light)]);
+    gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
+    timer.endPass(gpu, cmd);
+    passes.emplace_back("epipolar_fixup");
+  }
 
   if (bindings.debugView != DebugView::None) {
     pass("epipolar_debug_background", debugBackgroundPipeline_, [&] {
       gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                            groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
     });
-    if (bindings.debugView == DebugView::EpipolarSamples) {
+    // Without in-scattering nothing was sampled or fixed up: the dimmed (zero) L_in alone.
+    if (bindings.scatters && bindings.debugView == DebugView::EpipolarSamples) {
       pass("epipolar_debug_samples", debugSamplesPipeline_,
            [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
-    } else {
+    } else if (bindings.scatters) {
       pass("epipolar_debug_fixup", debugFixupPipeline_, [&] { gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0); });
     }
   }

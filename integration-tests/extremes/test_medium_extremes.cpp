@@ -1,18 +1,11 @@
 // The extremes suite (ctest label `extremes`), its medium cases: every profile on σ_t from 0 to
-// 10³ per scene unit, one channel without scattering, and g at ±0.99 and 0. Each is asserted: no
-// NaN/Inf, no validation message, and L_in within twice the profile's accuracy budget of the
-// Reference (High 3%, Balanced 6%, Performance 8% relative RMSE; Auto: the profile it ran). Every
-// case prints one "[ extremes ]" line: scripts/extremes-report.sh turns them into docs/EXTREMES.md.
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
-#include <cstdio>
+// 10³ per scene unit, one channel without scattering, and g at ±0.99 and 0, against the Reference
+// (extremes_support.h says what is asserted).
 #include <string>
-#include <vector>
 
 #include <gtest/gtest.h>
 
-#include "test_support.h"
+#include "extremes_support.h"
 
 namespace tyndall::test {
 namespace {
@@ -23,16 +16,6 @@ struct MediumCase {
   double albedo;          // σ_s / σ_t
   double g;               // Henyey–Greenstein
 };
-
-// The profile's relative-RMSE budget (the profile issue's goals), doubled by the caller.
-double budget(Profile profile) {
-  switch (profile) {
-    case Profile::High: return 0.02;
-    case Profile::Balanced: return 0.04;
-    case Profile::Performance: return 0.08;
-    default: return 0.0;
-  }
-}
 
 host::Scene withMedium(host::Scene scene, const MediumCase& c) {
   host::MediumComponent m;
@@ -48,43 +31,12 @@ class MediumExtremes : public ::testing::TestWithParam<MediumCase> {};
 
 TEST_P(MediumExtremes, EveryProfileStaysFiniteAndWithinTwiceItsBudget) {
   const MediumCase& c = GetParam();
-  const host::Scene scene = withMedium(loadTestScene("analytic-mixed"), c);
   samples::RenderOptions o;
   o.width = 160;
   o.height = 90;
   o.shadowMapSize = 1024;
   o.frames = 3;
-  o.profile = Profile::Reference;
-  const samples::RenderResult reference = renderWithSharedContext(scene, o);
-  const ErrorStats self = compareRgb(reference.scattering, reference.scattering);
-  EXPECT_EQ(self.nonFinite, 0u) << "the Reference itself";
-  const bool scatters = c.albedo > 0.0 && (c.extinction.x > 0.0 || c.extinction.y > 0.0 || c.extinction.z > 0.0);
-  for (Profile profile : {Profile::High, Profile::Balanced, Profile::Performance, Profile::Auto}) {
-    SCOPED_TRACE(to_string(profile));
-    o.profile = profile;
-    const samples::RenderResult r = renderWithSharedContext(scene, o);
-    const ErrorStats s = compareRgb(r.scattering, reference.scattering);
-    const ErrorStats t = compareRgb(r.transmittance, reference.transmittance);
-    const Profile ran = profile == Profile::Auto ? r.stats.profileUsed : profile;
-    const double bar = 2.0 * budget(ran);
-    std::printf("[ extremes ] %s :: %s :: L_in %s :: T relative RMSE %.3g%%, NaN/Inf %zu\n", c.name, to_string(profile),
-                scatters ? describe(s).c_str() : "zero expected", 100.0 * t.relativeRmse, t.nonFinite);
-    EXPECT_EQ(s.nonFinite, 0u);
-    EXPECT_EQ(t.nonFinite, 0u);
-    EXPECT_LE(t.relativeRmse, 1e-5) << "T is exact per pixel in every technique";
-    if (scatters) {
-      EXPECT_GT(s.meanReference, 0.0);
-      EXPECT_LE(s.relativeRmse, bar) << describe(s);
-    } else {
-      EXPECT_EQ(s.meanReference, 0.0);
-      double largest = 0.0;  // of L_in's RGB (the AOV is RGBA)
-      for (std::size_t i = 0; i < r.scattering.pixels.size(); ++i) {
-        if (i % 4 != 3) largest = std::max(largest, double(std::abs(r.scattering.pixels[i])));
-      }
-      EXPECT_EQ(largest, 0.0);
-    }
-  }
-  expectNoValidationMessages();
+  expectEveryProfileWithinTwiceItsBudget(withMedium(loadTestScene("analytic-mixed"), c), o, c.name);
 }
 
 INSTANTIATE_TEST_SUITE_P(

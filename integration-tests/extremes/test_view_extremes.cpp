@@ -1,0 +1,80 @@
+// The extremes suite (ctest label `extremes`), its view cases: every profile with the epipole at
+// the screen centre, a corner, on an edge, one pixel off screen, far off screen, behind the camera
+// and exactly on the view axis in front and behind; reverse-Z and an infinite far plane; near/far
+// ratios of 10⁻⁴ and 10⁻⁶; output extents of 1×1 and 3×7. Against the Reference, as
+// extremes_support.h says.
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "extremes_support.h"
+
+namespace tyndall::test {
+namespace {
+
+constexpr std::uint32_t kWidth = 160;
+constexpr std::uint32_t kHeight = 90;
+
+samples::RenderOptions options(std::uint32_t width = kWidth, std::uint32_t height = kHeight) {
+  samples::RenderOptions o;
+  o.width = width;
+  o.height = height;
+  o.shadowMapSize = 1024;
+  o.frames = 3;
+  return o;
+}
+
+struct EpipoleCase {
+  const char* name;
+  glm::dvec2 ndc;
+  bool behind;
+};
+
+class EpipoleExtremes : public ::testing::TestWithParam<EpipoleCase> {};
+
+TEST_P(EpipoleExtremes, EveryProfileStaysFiniteAndWithinTwiceItsBudget) {
+  const EpipoleCase& e = GetParam();
+  const host::Scene scene = withEpipoleAt(loadTestScene("analytic-mixed"), e.ndc, e.behind, kWidth, kHeight);
+  expectEveryProfileWithinTwiceItsBudget(scene, options(), std::string("epipole ") + e.name);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Placements, EpipoleExtremes,
+    ::testing::Values(EpipoleCase{"centre_on_axis", {0.0, 0.0}, false}, EpipoleCase{"corner", {-1.0, -1.0}, false},
+                      EpipoleCase{"edge", {1.0, 0.3}, false},
+                      // One pixel beyond the right edge: NDC 1 + 2/width.
+                      EpipoleCase{"one_pixel_off", {1.0 + 2.0 / kWidth, 0.2}, false},
+                      EpipoleCase{"far_off", {40.0, -25.0}, false}, EpipoleCase{"behind", {0.4, 0.3}, true},
+                      EpipoleCase{"behind_on_axis", {0.0, 0.0}, true}),
+    [](const auto& test_param) { return std::string(test_param.param.name); });
+
+TEST(ViewExtremes, DepthConventions) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  for (const auto& [name, reverse, infinite] : {std::tuple{"reverse-Z", true, false},
+                                                std::tuple{"infinite far", false, true},
+                                                std::tuple{"reverse-Z, infinite far", true, true}}) {
+    samples::RenderOptions o = options();
+    o.depth = reverse ? host::DepthConvention::Reverse : host::DepthConvention::Standard;
+    o.infiniteFar = infinite;
+    expectEveryProfileWithinTwiceItsBudget(scene, o, name);
+  }
+}
+
+TEST(ViewExtremes, NearFarRatios) {
+  for (const auto& [name, nearPlane, farPlane] : {std::tuple{"near/far 1e-4", 0.01, 100.0},
+                                                  std::tuple{"near/far 1e-6", 1e-4, 100.0}}) {
+    host::Scene scene = loadTestScene("analytic-spheres");
+    scene.camera.nearPlane = nearPlane;
+    scene.camera.farPlane = farPlane;
+    expectEveryProfileWithinTwiceItsBudget(scene, options(), name);
+  }
+}
+
+TEST(ViewExtremes, TinyExtents) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  expectEveryProfileWithinTwiceItsBudget(scene, options(1, 1), "extent 1x1");
+  expectEveryProfileWithinTwiceItsBudget(scene, options(3, 7), "extent 3x7");
+}
+
+}  // namespace
+}  // namespace tyndall::test

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <utility>
 
 namespace tyndall {
 
@@ -40,8 +41,12 @@ void AutoProfile::measured(std::uint64_t frameIndex, double totalMs) {
   window.ms[window.next] = totalMs;
   window.next = (window.next + 1) % kWindow;
   window.count = std::min(window.count + 1, kWindow);
+  // Median of at most kWindow values: an insertion sort (std::sort on a 5-element array trips
+  // GCC 12's -Warray-bounds under the sanitizer build).
   std::array<double, kWindow> sorted = window.ms;
-  std::sort(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(window.count));
+  for (std::size_t i = 1; i < window.count; ++i) {
+    for (std::size_t j = i; j > 0 && sorted[j - 1] > sorted[j]; --j) std::swap(sorted[j - 1], sorted[j]);
+  }
   estimateMs_[step] = sorted[window.count / 2];
   measuredAt_[step] = frameIndex;
 }

@@ -1,8 +1,8 @@
 // The extremes suite (ctest label `extremes`), its view cases: every profile with the epipole at
 // the screen centre, a corner, on an edge, one pixel off screen, far off screen, behind the camera
 // and exactly on the view axis in front and behind; reverse-Z and an infinite far plane; near/far
-// ratios of 10⁻⁴ and 10⁻⁶; output extents of 1×1 and 3×7. Against the Reference, as
-// extremes_support.h says.
+// ratios of 10⁻⁴ and 10⁻⁶; output extents of 1×1 and 3×7; sky-only and surface-only frames and a
+// surface at the near plane. Against the Reference, as extremes_support.h says.
 #include <string>
 
 #include <gtest/gtest.h>
@@ -74,6 +74,30 @@ TEST(ViewExtremes, TinyExtents) {
   const host::Scene scene = loadTestScene("analytic-spheres");
   expectEveryProfileWithinTwiceItsBudget(scene, options(1, 1), "extent 1x1");
   expectEveryProfileWithinTwiceItsBudget(scene, options(3, 7), "extent 3x7");
+}
+
+// analytic-mixed with the camera turned: straight up (every pixel is sky, integrated to the far
+// plane), straight down from close above the ground (every pixel is surface), and down onto the
+// ground from just beyond the near plane (the nearest surface at 1.5 near distances).
+TEST(ViewExtremes, SkyOnlySurfaceOnlyAndNearPlane) {
+  const host::Scene base = loadTestScene("analytic-mixed");
+  struct Case {
+    const char* name;
+    glm::dvec3 position;
+    glm::dvec3 target;
+    glm::dvec3 up;
+  };
+  const double nearPlane = base.camera.nearPlane;
+  for (const Case& c : {Case{"sky only", {-2.0, 3.0, 12.0}, {-2.0, 10.0, 12.0}, {0.0, 0.0, -1.0}},
+                        Case{"surface only", {-4.0, 1.0, 8.0}, {-4.0, 0.0, 8.0}, {0.0, 0.0, -1.0}},
+                        Case{"surface at the near plane", {-4.0, 1.5 * nearPlane, 8.0}, {-4.0, 0.0, 8.0},
+                             {0.0, 0.0, -1.0}}}) {
+    host::Scene scene = base;
+    scene.camera.position = c.position;
+    scene.camera.target = c.target;
+    scene.camera.up = c.up;
+    expectEveryProfileWithinTwiceItsBudget(scene, options(), c.name);
+  }
 }
 
 }  // namespace

@@ -1,8 +1,13 @@
-// Every kind of invalid frame DESIGN.md lists: the status says why, nothing is recorded (the back
-// buffer is exactly what the host rendered), and no validation message appears.
+// Every kind of invalid frame DESIGN.md lists, and every technique setting out of its range: the
+// status says why, nothing is recorded (the back buffer is exactly what the host rendered), and no
+// validation message appears.
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -13,9 +18,11 @@ namespace tyndall::test {
 namespace {
 
 struct BadCase {
-  const char* name;
+  std::string name;
   Status expected;
   std::function<void(FrameDesc&, samples::FrameStorage&)> mutate;
+  /// When set, the message must begin with it (the name of the field at fault).
+  std::string messageStart;
 };
 
 // A post-process that builds the frame an engine would, breaks it, and records it.
@@ -131,6 +138,40 @@ std::vector<BadCase> badCases() {
   };
 }
 
+// Every EpipolarSettings field out of its range, in a frame that asks for the epipolar technique:
+// the message names the field.
+std::vector<BadCase> badEpipolarSettings() {
+  const std::vector<std::pair<const char*, std::function<void(EpipolarSettings&)>>> fields = {
+      {"epipolar.slices", [](EpipolarSettings& s) { s.slices = 7; }},
+      {"epipolar.slices", [](EpipolarSettings& s) { s.slices = 4097; }},
+      {"epipolar.samplesPerSlice", [](EpipolarSettings& s) { s.samplesPerSlice = 1; }},
+      {"epipolar.samplesPerSlice", [](EpipolarSettings& s) { s.samplesPerSlice = 4097; }},
+      {"epipolar.epipoleDensity", [](EpipolarSettings& s) { s.epipoleDensity = 0.5f; }},
+      {"epipolar.bilateralDepthThreshold", [](EpipolarSettings& s) { s.bilateralDepthThreshold = 0.0f; }},
+      {"epipolar.fixupWeightThreshold", [](EpipolarSettings& s) { s.fixupWeightThreshold = 1.5f; }},
+      {"epipolar.sliceContrastThreshold", [](EpipolarSettings& s) { s.sliceContrastThreshold = 0.0f; }},
+      {"epipolar.sliceContrastThreshold", [](EpipolarSettings& s) { s.sliceContrastThreshold = kNaN; }},
+      {"epipolar.initialSampleStep", [](EpipolarSettings& s) { s.initialSampleStep = 0; }},
+      {"epipolar.refinementThreshold", [](EpipolarSettings& s) { s.refinementThreshold = -0.1f; }},
+      {"epipolar.intensityRefinementThreshold", [](EpipolarSettings& s) { s.intensityRefinementThreshold = 2.0f; }},
+      {"epipolar.maxTreeStep", [](EpipolarSettings& s) { s.maxTreeStep = 3; }},
+      {"epipolar.maxTreeStep", [](EpipolarSettings& s) { s.maxTreeStep = 8192; }},
+      {"epipolar.epipoleFixupRadius", [](EpipolarSettings& s) { s.epipoleFixupRadius = 300.0f; }},
+  };
+  std::vector<BadCase> cases;
+  for (const auto& [field, mutate] : fields) {
+    auto settings = std::make_shared<EpipolarSettings>();
+    mutate(*settings);
+    cases.push_back({std::string("bad ") + field, Status::InvalidArgument,
+                     [settings](FrameDesc& f, samples::FrameStorage&) {
+                       f.technique = Technique::Epipolar;
+                       f.epipolar = settings.get();
+                     },
+                     field});
+  }
+  return cases;
+}
+
 TEST(BadInputs, EachCaseRecordsNothingAndSaysWhy) {
   const host::Scene scene = loadTestScene("analytic-mixed");
   host::RenderSettings settings;
@@ -163,7 +204,9 @@ TEST(BadInputs, EachCaseRecordsNothingAndSaysWhy) {
   ASSERT_TRUE(renderer->readBackBuffer(good, error)) << error;
   ASSERT_GT(compareRgb(good, plain).relativeRmse, 0.01);
 
-  for (const BadCase& bad : badCases()) {
+  std::vector<BadCase> cases = badCases();
+  for (BadCase& bad : badEpipolarSettings()) cases.push_back(std::move(bad));
+  for (const BadCase& bad : cases) {
     SCOPED_TRACE(bad.name);
     effect.badCase = &bad;
     const std::uint64_t framesBefore = effect.context->stats().frameIndex;
@@ -172,6 +215,9 @@ TEST(BadInputs, EachCaseRecordsNothingAndSaysWhy) {
     EXPECT_FALSE(effect.outcome.ok());
     EXPECT_EQ(effect.outcome.status, bad.expected) << to_string(effect.outcome.status) << ": " << effect.outcome.message;
     EXPECT_FALSE(effect.outcome.message.empty());
+    if (!bad.messageStart.empty()) {
+      EXPECT_EQ(effect.outcome.message.rfind(bad.messageStart, 0), 0u) << effect.outcome.message;
+    }
     EXPECT_EQ(effect.context->stats().frameIndex, framesBefore) << "a rejected frame must not count";
     host::ImageRgba32f out;
     ASSERT_TRUE(renderer->readBackBuffer(out, error)) << error;

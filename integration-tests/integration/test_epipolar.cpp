@@ -1,16 +1,13 @@
 // The epipolar technique (sparse ray-marching samples refined at depth breaks and along L_in,
 // marched along each slice's min/max tree, interpolation along the slices, bilateral unwarp,
-// fix-up) against the Reference in the same run, on every sample scene and the epipole cases; its
-// settings' validation; the spot light's table. docs/EPIPOLAR.md has the measured figures.
+// fix-up) against the Reference in the same run, on every sample scene and the epipole cases; the
+// passes it records; the spot light's table (its settings' validation is in test_bad_inputs).
+// docs/EPIPOLAR.md has the measured figures.
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <string>
-#include <utility>
-#include <vector>
 #include <tuple>
-
-#include <glm/gtc/matrix_transform.hpp>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -186,51 +183,6 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarTree,
                            return name;
                          });
 
-// Every EpipolarSettings field out of its range: the frame records nothing and the error names the
-// field (what the render sees: renderScene fails with the context's message).
-TEST(EpipolarSettingsValidation, EachBadValueRecordsNothingAndNamesTheField) {
-  const host::Scene scene = loadTestScene("analytic-mixed");
-  const std::vector<std::pair<const char*, std::function<void(EpipolarSettings&)>>> cases = {
-      {"epipolar.slices", [](EpipolarSettings& s) { s.slices = 7; }},
-      {"epipolar.slices", [](EpipolarSettings& s) { s.slices = 4097; }},
-      {"epipolar.samplesPerSlice", [](EpipolarSettings& s) { s.samplesPerSlice = 1; }},
-      {"epipolar.samplesPerSlice", [](EpipolarSettings& s) { s.samplesPerSlice = 4097; }},
-      {"epipolar.epipoleDensity", [](EpipolarSettings& s) { s.epipoleDensity = 0.5f; }},
-      {"epipolar.bilateralDepthThreshold", [](EpipolarSettings& s) { s.bilateralDepthThreshold = 0.0f; }},
-      {"epipolar.fixupWeightThreshold", [](EpipolarSettings& s) { s.fixupWeightThreshold = 1.5f; }},
-      {"epipolar.sliceContrastThreshold", [](EpipolarSettings& s) { s.sliceContrastThreshold = 0.0f; }},
-      {"epipolar.sliceContrastThreshold", [](EpipolarSettings& s) { s.sliceContrastThreshold = NAN; }},
-      {"epipolar.initialSampleStep", [](EpipolarSettings& s) { s.initialSampleStep = 0; }},
-      {"epipolar.refinementThreshold", [](EpipolarSettings& s) { s.refinementThreshold = -0.1f; }},
-      {"epipolar.intensityRefinementThreshold", [](EpipolarSettings& s) { s.intensityRefinementThreshold = 2.0f; }},
-      {"epipolar.maxTreeStep", [](EpipolarSettings& s) { s.maxTreeStep = 3; }},
-      {"epipolar.maxTreeStep", [](EpipolarSettings& s) { s.maxTreeStep = 8192; }},
-      {"epipolar.epipoleFixupRadius", [](EpipolarSettings& s) { s.epipoleFixupRadius = 300.0f; }},
-  };
-  auto tiny = [] {
-    samples::RenderOptions o = options(Technique::Epipolar);
-    o.width = 32;
-    o.height = 18;
-    o.shadowMapSize = 256;
-    o.pipelineCreation = PipelineCreation::OnFirstUse;
-    return o;
-  };
-  for (const auto& [field, mutate] : cases) {
-    SCOPED_TRACE(field);
-    samples::RenderOptions o = tiny();
-    mutate(*o.epipolar);
-    samples::RenderResult result;
-    std::string error;
-    EXPECT_FALSE(samples::renderScene(validatedDevice(), scene, o, true, result, error));
-    EXPECT_NE(error.find(std::string("InvalidArgument: ") + field), std::string::npos) << error;
-  }
-  // The defaults pass, so that the cases above fail for their field alone.
-  samples::RenderResult result;
-  std::string error;
-  EXPECT_TRUE(samples::renderScene(validatedDevice(), scene, tiny(), true, result, error)) << error;
-  expectNoValidationMessages();
-}
-
 // The passes follow what the frame needs (DESIGN.md "Model only what the scene requires"): a
 // directional light records no scattering table; a frame without in-scattering (σ_s = 0, σ_a > 0)
 // records only the unwarp, which writes the exact T (the Reference's, to the bit) and L_in = 0.
@@ -291,30 +243,6 @@ TEST(EpipolarScatteringTable, BuiltOnceForASpotLightOnly) {
   expectNoValidationMessages();
 }
 
-// Turns the camera so that the light (where its light comes from) appears at `ndc` (Vulkan NDC,
-// y down; beyond ±1 is off screen), or, with `behind`, so that the light is behind the camera
-// and its mirrored epipole appears there.
-host::Scene withEpipoleAt(host::Scene scene, glm::dvec2 ndc, bool behind) {
-  const glm::dvec3 toLight = (behind ? 1.0 : -1.0) * glm::normalize(scene.light.direction);
-  const double tanHalf = std::tan(glm::radians(scene.camera.fovYDegrees) * 0.5);
-  const double aspect = double(kWidth) / kHeight;
-  // The light's direction in camera space (x right, y up, looking down −z).
-  const glm::dvec3 c = glm::normalize(glm::dvec3(ndc.x * tanHalf * aspect, -ndc.y * tanHalf, -1.0));
-  // A camera looking straight at the light, then turned so that the light lands on c.
-  const glm::dvec3 worldUp = std::abs(toLight.y) > 0.99 ? glm::dvec3(0, 0, 1) : glm::dvec3(0, 1, 0);
-  const glm::dvec3 r0 = glm::normalize(glm::cross(toLight, worldUp));
-  const glm::dvec3 u0 = glm::cross(r0, toLight);
-  const glm::dmat3 lookingAtLight(r0, u0, -toLight);
-  const glm::dvec3 axis = glm::cross(c, glm::dvec3(0, 0, -1));
-  const double angle = std::acos(std::clamp(glm::dot(c, glm::dvec3(0, 0, -1)), -1.0, 1.0));
-  glm::dmat3 turn(1.0);
-  if (glm::length(axis) > 1e-12) turn = glm::dmat3(glm::rotate(glm::dmat4(1.0), angle, glm::normalize(axis)));
-  const glm::dmat3 cameraToWorld = lookingAtLight * turn;
-  scene.camera.target = scene.camera.position + cameraToWorld * glm::dvec3(0, 0, -1);
-  scene.camera.up = cameraToWorld * glm::dvec3(0, 1, 0);
-  return scene;
-}
-
 struct EpipoleCase {
   const char* name;
   glm::dvec2 ndc;
@@ -328,7 +256,7 @@ class EpipoleCases : public ::testing::TestWithParam<EpipoleCase> {};
 // Balanced at 640×360.
 TEST_P(EpipoleCases, MatchTheReference) {
   const EpipoleCase& e = GetParam();
-  expectProfilesMatchTheReference(withEpipoleAt(loadTestScene("analytic-mixed"), e.ndc, e.behind),
+  expectProfilesMatchTheReference(withEpipoleAt(loadTestScene("analytic-mixed"), e.ndc, e.behind, 640, 360),
                                   std::string("epipole ") + e.name);
 }
 

@@ -886,30 +886,33 @@ TEST(ScatteringLutGuard, BackwardLobeCancellation) {
 
 // ---- The spot cone ----
 
+// A random unit vector, uniform over directions (rejection sampling in the unit ball).
+vec3 randomUnit(std::mt19937& rng) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  vec3 v;
+  do {
+    v = vec3(u(rng), u(rng), u(rng));
+  } while (length(v) > 1.0f || length(v) < 0.1f);
+  return normalize(v);
+}
+
 // The cone intervals against a dense scan of the cone test (cos of the angle to the axis ≥ the
 // cone's, in front of the light) on random rays, some nearly along the axis, some through the
 // apex region, half-angles from 3° to 86°: no disagreement away from the surface.
 TEST(ScatteringLutSpot, ConeIntervalMatchesBruteForce) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  const auto unit = [&]() {
-    vec3 v;
-    do {
-      v = vec3(u(rng), u(rng), u(rng));
-    } while (length(v) > 1.0f || length(v) < 0.1f);
-    return normalize(v);
-  };
   int disagreements = 0;
   int checked = 0;
   for (int trial = 0; trial < 4000; ++trial) {
     const vec3 light = 5.0f * vec3(u(rng), u(rng), u(rng));
-    const vec3 axis = unit();
+    const vec3 axis = randomUnit(rng);
     const float cos_half = std::cos(std::uniform_real_distribution<float>(0.05f, 1.5f)(rng));
     vec3 origin = 5.0f * vec3(u(rng), u(rng), u(rng));
-    vec3 dir = unit();
+    vec3 dir = randomUnit(rng);
     if (trial % 4 == 1) origin = light + 2.0f * axis + 0.3f * vec3(u(rng), u(rng), u(rng));
-    if (trial % 4 == 2) dir = normalize(axis + 0.05f * unit());
-    if (trial % 4 == 3) origin = light - 3.0f * dir + 1e-3f * unit();
+    if (trial % 4 == 2) dir = normalize(axis + 0.05f * randomUnit(rng));
+    if (trial % 4 == 3) origin = light - 3.0f * dir + 1e-3f * randomUnit(rng);
     const TynLightRay r = tyn_light_ray(origin, dir, light);
     const TynSpotCone cone = tyn_spot_cone(r, dir, axis, cos_half, cos_half);
     const vec2 interval = tyn_spot_cone_interval(r, cone, cos_half, 0.0f, 20.0f);
@@ -942,13 +945,6 @@ TEST(ScatteringLutSpot, ConeIntervalMatchesBruteForce) {
 TEST(ScatteringLutSpot, SegmentsCrossingThePenumbra) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  const auto unit = [&]() {
-    vec3 v;
-    do {
-      v = vec3(u(rng), u(rng), u(rng));
-    } while (length(v) > 1.0f || length(v) < 0.1f);
-    return normalize(v);
-  };
   const float cos_outer = std::cos(0.5f);
   const float cos_inner = std::cos(0.35f);
   for (const NamedPhase& phase : {allPhases()[1], allPhases()[5], allPhases()[7]}) {
@@ -961,13 +957,13 @@ TEST(ScatteringLutSpot, SegmentsCrossingThePenumbra) {
         Scene s;
         s.spot = true;
         s.light = 3.0f * vec3(u(rng), u(rng), u(rng));
-        s.axis = unit();
+        s.axis = randomUnit(rng);
         s.cos_outer = cos_outer;
         s.cos_inner = cos_inner;
-        const vec3 perp = normalize(cross(s.axis, unit()));
+        const vec3 perp = normalize(cross(s.axis, randomUnit(rng)));
         const float dist = std::uniform_real_distribution<float>(0.5f, 6.0f)(rng);
         s.origin = s.light + dist * std::cos(0.42f) * s.axis + dist * std::sin(0.42f) * perp;
-        s.dir = trial % 3 == 0 ? normalize(s.light - s.origin + 0.2f * unit()) : unit();
+        s.dir = trial % 3 == 0 ? normalize(s.light - s.origin + 0.2f * randomUnit(rng)) : randomUnit(rng);
         const TynLightRay r = tyn_light_ray(s.origin, s.dir, s.light);
         const TynSpotCone cone = tyn_spot_cone(r, s.dir, s.axis, cos_outer, cos_inner);
         const float tb = std::uniform_real_distribution<float>(0.5f, 20.0f)(rng);

@@ -29,8 +29,6 @@ void main() {
   uvec2 pair = tyn_slice_pair(slice_coordinate, slices);
   float second = fract(slice_coordinate);
 
-  vec3 sum = vec3(0.0);
-  float weight_sum = 0.0;
   vec3 slice_sum[2] = vec3[2](vec3(0.0), vec3(0.0));
   float slice_weight_sum[2] = float[2](0.0, 0.0);
   for (int s = 0; s < 2; ++s) {
@@ -57,12 +55,12 @@ void main() {
       bool same_surface = abs(coordinates.z - distance) <= epipolar.params.y * distance;
       if (coordinates.w < 0.5 || !same_surface || tap_weight <= 0.0) continue;
       vec3 value = tap_weight * imageLoad(epipolar_scattering, ivec2(int(index), int(slice))).rgb;
-      sum += value;
-      weight_sum += tap_weight;
       slice_sum[s] += value;
       slice_weight_sum[s] += tap_weight;
     }
   }
+  vec3 sum = slice_sum[0] + slice_sum[1];
+  float weight_sum = slice_weight_sum[0] + slice_weight_sum[1];
   // Both slices seen: their interpolated L_in, compared channel by channel against the larger.
   bool slice_edge = false;
   if (epipolar.refinement.z < 1.0 && slice_weight_sum[0] > 0.0 && slice_weight_sum[1] > 0.0) {

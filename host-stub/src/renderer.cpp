@@ -683,6 +683,19 @@ bool Renderer::readAovDebug(ImageRgba32f& out, std::string& error) {
 }
 
 const RenderSettings& Renderer::settings() const { return impl_->settings; }
+bool Renderer::setCamera(const Camera& camera, std::string& error) {
+  Impl& r = *impl_;
+  const Camera previous = r.scene.camera;
+  r.scene.camera = camera;
+  if (!r.updateViews(error)) {
+    r.scene.camera = previous;
+    std::string unused;
+    r.updateViews(unused);  // the previous camera was accepted before
+    return false;
+  }
+  return true;
+}
+
 glm::mat4 Renderer::viewMatrix() const { return glm::mat4(impl_->camera.view); }
 glm::mat4 Renderer::projectionMatrix() const { return glm::mat4(impl_->camera.projection); }
 

@@ -12,20 +12,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "settings_text.h"
 #include "tyndall_effect.h"
 
 namespace tyndall::samples {
 
 namespace {
-
-bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
-  std::uint32_t value = 0;
-  const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end || value < minimum || value > maximum) return false;
-  out = value;
-  return true;
-}
 
 bool parseProfile(const std::string& name, Profile& out) {
   for (Profile p : {Profile::Reference, Profile::High, Profile::Balanced, Profile::Performance, Profile::Auto}) {
@@ -35,128 +27,6 @@ bool parseProfile(const std::string& name, Profile& out) {
     }
   }
   return false;
-}
-
-bool parseFloat(const std::string& text, float& out) {
-  float value = 0.0f;
-  const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  if (ec != std::errc() || ptr != end) return false;
-  out = value;
-  return true;
-}
-
-// --epipolar KEY=VALUE[,KEY=VALUE…] over EpipolarSettings' defaults. Ranges are the plugin's to
-// check (a frame with an invalid value fails with the field's name); only the syntax is checked here.
-bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::string& error) {
-  EpipolarSettings s;
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t end = std::min(text.find(',', begin), text.size());
-    const std::string item = text.substr(begin, end - begin);
-    const std::size_t eq = item.find('=');
-    const std::string key = item.substr(0, eq);
-    const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
-    std::uint32_t u = 0;
-    const auto uintField = [&](std::uint32_t& field) { return parseUint(value, 0, 1u << 30, field); };
-    const auto boolField = [&](bool& field) {
-      if (!parseUint(value, 0, 1, u)) return false;
-      field = u != 0;
-      return true;
-    };
-    bool ok = false;
-    if (key == "slices") ok = uintField(s.slices);
-    else if (key == "samples") ok = uintField(s.samplesPerSlice);
-    else if (key == "initial-step") ok = uintField(s.initialSampleStep);
-    else if (key == "refinement") ok = parseFloat(value, s.refinementThreshold);
-    else if (key == "intensity-refinement") ok = parseFloat(value, s.intensityRefinementThreshold);
-    else if (key == "density") ok = parseFloat(value, s.epipoleDensity);
-    else if (key == "improved-placement") ok = boolField(s.improvedSamplePlacement);
-    else if (key == "tree") ok = boolField(s.minMaxTree);
-    else if (key == "max-tree-step") ok = uintField(s.maxTreeStep);
-    else if (key == "bilateral") ok = parseFloat(value, s.bilateralDepthThreshold);
-    else if (key == "fixup-weight") ok = parseFloat(value, s.fixupWeightThreshold);
-    else if (key == "slice-contrast") ok = parseFloat(value, s.sliceContrastThreshold);
-    else if (key == "epipole-radius") ok = parseFloat(value, s.epipoleFixupRadius);
-    else {
-      error = "--epipolar: unknown key '" + key + "' (keys: slices, samples, initial-step, refinement, "
-              "intensity-refinement, density, improved-placement, tree, max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius)";
-      return false;
-    }
-    if (!ok) {
-      error = "--epipolar: bad value for " + key + " (got '" + value + "')";
-      return false;
-    }
-    begin = end + 1;
-  }
-  out = s;
-  return true;
-}
-
-// --prefiltered KEY=VALUE[,KEY=VALUE…] over PrefilteredSettings' defaults; as for --epipolar, the
-// plugin checks the ranges, this only the syntax and the names of the enumerations.
-bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out, std::string& error) {
-  PrefilteredSettings s;
-  const auto pick = [](const std::string& value, std::initializer_list<const char*> names, auto& field) {
-    std::uint32_t index = 0;
-    for (const char* name : names) {
-      if (value == name) {
-        field = static_cast<std::remove_reference_t<decltype(field)>>(index);
-        return true;
-      }
-      ++index;
-    }
-    return false;
-  };
-  std::size_t begin = 0;
-  while (begin <= text.size()) {
-    const std::size_t end = std::min(text.find(',', begin), text.size());
-    const std::string item = text.substr(begin, end - begin);
-    const std::size_t eq = item.find('=');
-    const std::string key = item.substr(0, eq);
-    const std::string value = eq == std::string::npos ? "" : item.substr(eq + 1);
-    std::uint32_t u = 0;
-    bool ok = false;
-    if (key == "basis") {
-      ok = pick(value, {"moments4_64", "moments4_128", "moments6_64", "moments6_96", "moments6_192", "fourier32"}, s.basis);
-    } else if (key == "rectification") {
-      ok = pick(value, {"automatic", "non-linear", "projective"}, s.rectification);
-    } else if (key == "rows") {
-      ok = parseUint(value, 0, 1u << 30, s.rows);
-    } else if (key == "columns") {
-      ok = parseUint(value, 0, 1u << 30, s.columns);
-    } else if (key == "filtered") {
-      ok = parseUint(value, 0, 1, u);
-      s.filteredResampling = u != 0;
-    } else if (key == "spacing") {
-      ok = pick(value, {"mean-theta", "reference-ray", "fastest-ray"}, s.spacing);
-    } else if (key == "taps") {
-      ok = parseUint(value, 0, 1u << 30, s.rayWeightTaps);
-    } else if (key == "prefix-sums") {
-      ok = pick(value, {"row-parallel", "thread-per-row"}, s.prefixSums);
-    } else if (key == "beta") {
-      if (value == "adaptive") {
-        s.adaptiveOverestimation = true;
-        ok = true;
-      } else {
-        s.adaptiveOverestimation = false;
-        ok = parseFloat(value, s.overestimation);
-      }
-    } else if (key == "epipole-block") {
-      ok = parseUint(value, 0, 1u << 30, s.epipoleBlockPixels);
-    } else {
-      error = "--prefiltered: unknown key '" + key +
-              "' (keys: basis, rectification, rows, columns, filtered, spacing, taps, prefix-sums, beta, epipole-block)";
-      return false;
-    }
-    if (!ok) {
-      error = "--prefiltered: bad value for " + key + " (got '" + value + "')";
-      return false;
-    }
-    begin = end + 1;
-  }
-  out = s;
-  return true;
 }
 
 double median(std::vector<double> values) {
@@ -178,14 +48,9 @@ std::string usage() {
          "         [--debug-view samples|fixup FILE.png]\n"
          "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
          "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
-         "    slices, samples, initial-step, refinement, intensity-refinement, density, improved-placement (0|1),\n"
-         "    tree (0|1),"
-         "    max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius\n"
+         "    " + std::string(kEpipolarKeys) + "\n"
          "  --prefiltered sets the prefiltered technique's parameters (the rest keep PrefilteredSettings' defaults):\n"
-         "    basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32),\n"
-         "    rectification (automatic|non-linear|projective), rows, columns, filtered (0|1),\n"
-         "    spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row),\n"
-         "    beta (adaptive|a number in [0, 1]), epipole-block\n";
+         "    " + kPrefilteredKeys + "\n";
 }
 
 bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options, bool& help, std::string& error) {

@@ -132,6 +132,10 @@ class Renderer {
   bool renderFrame(std::string& error);
   /// Waits until the GPU finished every submitted frame.
   void waitIdle();
+  /// Moves the camera for the frames rendered next (the shadow frusta, fitted to the camera's
+  /// frustum, follow); frames already submitted keep theirs. False with `error` for a camera the
+  /// scene loader would reject (then nothing changes).
+  bool setCamera(const Camera& camera, std::string& error);
   /// Rebuilds size-dependent resources (GPU idle first) and calls every effect's resize.
   bool resize(std::uint32_t width, std::uint32_t height, std::string& error);
 

@@ -1,0 +1,108 @@
+// tyndall-bench's summaries over the scenes and the profile choice from them, on made-up rows.
+#include <gtest/gtest.h>
+
+#include "report.h"
+
+namespace tyndall::samples::bench {
+namespace {
+
+Row row(const std::string& scene, const std::string& technique, const std::string& parameters, double ms,
+        double referenceMs, double rmse) {
+  Row r;
+  r.scene = scene;
+  r.width = 64;
+  r.height = 36;
+  r.shadowMap = 256;
+  r.technique = technique;
+  r.parameters = parameters;
+  r.configuration = technique + " " + parameters;
+  r.measured = true;
+  r.totalMilliseconds = ms;
+  r.referenceMilliseconds = referenceMs;
+  r.timeRatioToReference = ms / referenceMs;
+  r.floorMilliseconds = 1.0;
+  r.timeRatioToFloor = ms;
+  r.relativeRmse = rmse;
+  return r;
+}
+
+TEST(BenchSummary, MediansOverTheScenesAndTheWorstScene) {
+  std::vector<Row> rows{row("a", "epipolar", "x", 1.0, 100.0, 0.01), row("b", "epipolar", "x", 3.0, 100.0, 0.05),
+                        row("c", "epipolar", "x", 2.0, 100.0, 0.02)};
+  Row skipped = row("d", "epipolar", "x", 50.0, 100.0, 0.9);
+  skipped.measured = false;  // skipped rows do not count
+  rows.push_back(skipped);
+  Row otherSize = row("a", "epipolar", "x", 50.0, 100.0, 0.9);
+  otherSize.width = 128;  // another group
+  rows.push_back(otherSize);
+  const std::vector<Summary> s = summarize(rows, 64, 36, 256);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0].scenes, 3u);
+  EXPECT_DOUBLE_EQ(s[0].milliseconds, 2.0);
+  EXPECT_DOUBLE_EQ(s[0].timeRatioToReference, 0.02);
+  EXPECT_DOUBLE_EQ(s[0].relativeRmse, 0.02);
+  EXPECT_DOUBLE_EQ(s[0].worstRelativeRmse, 0.05);
+  EXPECT_EQ(s[0].worstScene, "b");
+  EXPECT_DOUBLE_EQ(s[0].timeSpread, 1.0);  // (3 − 1) / 2
+}
+
+TEST(BenchChoice, MostAccurateThatMeetsEachSpeedGoal) {
+  // Speedups 10×, 20×, 40×, 100× at errors 1%, 3%, 6%, 20%; the floor is 1 ms.
+  std::vector<Row> rows{row("a", "epipolar", "slow", 10.0, 100.0, 0.01), row("a", "epipolar", "mid", 5.0, 100.0, 0.03),
+                        row("a", "epipolar", "fast", 2.5, 100.0, 0.06), row("a", "prefiltered", "cheap", 1.0, 100.0, 0.20)};
+  const std::vector<Summary> s = summarize(rows, 64, 36, 256);
+  const std::vector<ProfileChoiceResult> c = chooseProfiles(s);
+  ASSERT_EQ(c.size(), 3u);
+  ASSERT_TRUE(c[0].summary && c[1].summary && c[2].summary);
+  EXPECT_EQ(s[*c[0].summary].parameters, "mid");  // High: >= 12× (10× is too slow), the most accurate
+  EXPECT_TRUE(c[0].speedMet);
+  EXPECT_FALSE(c[0].errorMet);  // 3% > 2%
+  EXPECT_EQ(s[*c[1].summary].parameters, "fast");  // Balanced: >= 25×
+  EXPECT_FALSE(c[1].errorMet);                     // 6% > 4%
+  EXPECT_EQ(s[*c[2].summary].parameters, "cheap");  // Performance: >= 50× and within 4× the floor
+  EXPECT_TRUE(c[2].speedMet);
+  EXPECT_TRUE(c[2].floorMet);
+  EXPECT_FALSE(c[2].errorMet);  // 20% > 8%
+}
+
+TEST(BenchChoice, TheFloorGoalRulesOutASlowPerformanceCandidate) {
+  Row slowOverFloor = row("a", "epipolar", "accurate", 1.5, 100.0, 0.01);
+  slowOverFloor.timeRatioToFloor = 6.0;  // 66× faster than the Reference but 6× the floor
+  std::vector<Row> rows{slowOverFloor, row("a", "epipolar", "rough", 1.0, 100.0, 0.05)};
+  const std::vector<Summary> s = summarize(rows, 64, 36, 256);
+  const std::vector<ProfileChoiceResult> c = chooseProfiles(s);
+  EXPECT_EQ(s[*c[0].summary].parameters, "accurate");  // High has no floor goal
+  EXPECT_EQ(s[*c[2].summary].parameters, "rough");
+  EXPECT_TRUE(c[2].errorMet);
+}
+
+TEST(BenchChoice, ThePerSceneBarHoldsWhereSomeConfigurationMeetsIt) {
+  // X is more accurate by the median but misses High's 3% on scene b, which Y meets; on scene c
+  // neither meets any bar, so c decides nothing.
+  std::vector<Row> rows{row("a", "epipolar", "X", 2.0, 100.0, 0.002), row("b", "epipolar", "X", 2.0, 100.0, 0.05),
+                        row("c", "epipolar", "X", 2.0, 100.0, 0.004), row("a", "epipolar", "Y", 3.0, 100.0, 0.01),
+                        row("b", "epipolar", "Y", 3.0, 100.0, 0.025), row("c", "epipolar", "Y", 3.0, 100.0, 0.3)};
+  rows[2].relativeRmse = 0.5;  // X on c: missed by both
+  const std::vector<Summary> s = summarize(rows, 64, 36, 256);
+  const std::vector<ProfileChoiceResult> c = chooseProfiles(s);
+  EXPECT_EQ(s[*c[0].summary].parameters, "Y");  // High: X misses 3% on b
+  // Balanced: both meet 6% on a and b and miss it on c, which then decides nothing (else neither
+  // would be eligible); Y's median is lower.
+  EXPECT_EQ(s[*c[1].summary].parameters, "Y");
+}
+
+TEST(BenchChoice, NothingFastEnoughTakesTheFastest) {
+  std::vector<Row> rows{row("a", "epipolar", "p", 50.0, 100.0, 0.30), row("a", "epipolar", "q", 20.0, 100.0, 0.25)};
+  Row broken = row("a", "epipolar", "nan", 0.5, 100.0, 0.001);
+  broken.nonFinite = 3;  // never chosen
+  rows.push_back(broken);
+  const std::vector<Summary> s = summarize(rows, 64, 36, 256);
+  for (const ProfileChoiceResult& choice : chooseProfiles(s)) {
+    ASSERT_TRUE(choice.summary);
+    EXPECT_EQ(s[*choice.summary].parameters, "q");
+    EXPECT_FALSE(choice.speedMet);
+  }
+}
+
+}  // namespace
+}  // namespace tyndall::samples::bench

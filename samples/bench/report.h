@@ -1,0 +1,82 @@
+// tyndall-bench's outputs: the rows as CSV, JSON and a Markdown table; per output and shadow-map
+// size the configurations summarised over the scenes, their Pareto front plotted (SVG, PNG); and
+// the profile choice with the document docs/TRADEOFFS.md is generated from.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "sweep.h"
+
+namespace tyndall::samples::bench {
+
+/// One configuration over the scenes of one output and shadow-map size (medians over the scenes it
+/// was measured on: the prefiltered technique runs on directional-light scenes only).
+struct Summary {
+  std::string configuration, technique, parameters;
+  std::size_t scenes = 0;
+  double timeRatioToReference = 0.0;  ///< median over the scenes
+  double timeRatioToFloor = 0.0;      ///< median
+  double relativeRmse = 0.0;          ///< median
+  double worstRelativeRmse = 0.0;     ///< max over the scenes
+  std::string worstScene;
+  double relativeP99 = 0.0;           ///< median
+  double temporalRatio = 0.0;         ///< median
+  double milliseconds = 0.0;          ///< median total
+  double timeSpread = 0.0;            ///< (max − min) / median of the total over the scenes
+  std::uint64_t deviceMemoryBytes = 0;  ///< max over the scenes
+  std::size_t nonFinite = 0;          ///< sum over the scenes
+  std::map<std::string, double> sceneRelativeRmse;  ///< per scene
+};
+
+std::vector<Summary> summarize(const std::vector<Row>& rows, std::uint32_t width, std::uint32_t height,
+                               std::uint32_t shadowMap);
+
+/// A profile's goals (the issue's, at 1920×1080 with a 2048² map, medians over the scenes) and the
+/// configuration picked for it: of those that meet the per-scene bar and the speed goal (and the
+/// floor goal), the one with
+/// the lowest median relative RMSE — a point of the Pareto front by construction, and distinct tiers
+/// where the front allows — or, if none is fast enough, the fastest (a miss). Whether it meets the
+/// error goal is reported.
+struct ProfileGoal {
+  const char* profile;         ///< "High", "Balanced", "Performance"
+  double maxRelativeRmse;      ///< 0.02, 0.04, 0.08
+  double minSpeedup;           ///< 12, 25, 50 (Reference time / time)
+  double maxTimeOverFloor;     ///< 4 for Performance, 0: none
+  /// The bar the profile's tests hold it to on every scene (the epipolar issue's: High 3%,
+  /// Balanced 6% at 640×360), 0: none. A scene on which no configuration meets it does not
+  /// decide between them (stained-glass: a documented miss of every configuration).
+  double maxSceneRelativeRmse;
+};
+const std::vector<ProfileGoal>& profileGoals();
+
+struct ProfileChoiceResult {
+  ProfileGoal goal;
+  std::optional<std::size_t> summary;  ///< index into the summaries; empty when there is no candidate
+  bool errorMet = false;
+  bool speedMet = false;
+  bool floorMet = true;
+};
+std::vector<ProfileChoiceResult> chooseProfiles(const std::vector<Summary>& summaries);
+
+struct ReportContext {
+  std::string commandLine;  ///< as run, for the documents
+  std::string device;
+  std::uint32_t chooseWidth = 0, chooseHeight = 0, chooseShadowMap = 0;  ///< the group the choice is made in
+  std::uint32_t frames = 0, warmUpFrames = 0, orbitFrames = 0;
+  double orbitDegreesPerFrame = 0.0;
+};
+
+/// The rows and context of an earlier run's results.json (writeReports writes it), so that the
+/// reports can be written again without measuring again (tyndall-bench --from).
+bool readResults(const std::string& path, std::vector<Row>& rows, ReportContext& context, std::string& error);
+
+/// Writes into `directory`: results.csv, results.json, results.md, pareto-WxH-N.svg/.png per group,
+/// choice.json and tradeoffs.md. Files are written whole (temporary file, rename).
+bool writeReports(const std::vector<Row>& rows, const ReportContext& context, const std::string& directory,
+                  std::string& error);
+
+}  // namespace tyndall::samples::bench

@@ -1,0 +1,389 @@
+#include "sweep.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "error_metrics.h"
+#include "floor_pass.h"
+#include "render_job.h"
+#include "settings_text.h"
+#include "tyndall_effect.h"
+
+namespace tyndall::samples::bench {
+
+std::string Configuration::techniqueName() const {
+  switch (technique) {
+    case Technique::Epipolar: return "epipolar";
+    case Technique::Prefiltered: return "prefiltered";
+    default: return "reference";
+  }
+}
+
+std::string Configuration::parameters() const {
+  if (technique == Technique::Epipolar) return describe(epipolar.value_or(EpipolarSettings{}));
+  if (technique == Technique::Prefiltered) return describe(prefiltered.value_or(PrefilteredSettings{}));
+  return "-";
+}
+
+std::string Configuration::name() const {
+  return technique == Technique::Reference ? techniqueName() : techniqueName() + " " + parameters();
+}
+
+bool parseConfiguration(const std::string& text, Configuration& out, std::string& error) {
+  const std::size_t colon = text.find(':');
+  const std::string technique = text.substr(0, colon);
+  const std::string parameters = colon == std::string::npos ? std::string() : text.substr(colon + 1);
+  Configuration c;
+  if (technique == "reference" && parameters.empty()) {
+    c.technique = Technique::Reference;
+  } else if (technique == "epipolar") {
+    c.technique = Technique::Epipolar;
+    EpipolarSettings s;
+    if (!parameters.empty() && !parseEpipolarSettings(parameters, s, error)) return false;
+    c.epipolar = s;
+  } else if (technique == "prefiltered") {
+    c.technique = Technique::Prefiltered;
+    PrefilteredSettings s;
+    if (!parameters.empty() && !parsePrefilteredSettings(parameters, s, error)) return false;
+    c.prefiltered = s;
+  } else {
+    error = "a configuration is reference, epipolar:KEY=VALUE,... or prefiltered:KEY=VALUE,... (got '" + text + "')";
+    return false;
+  }
+  out = c;
+  return true;
+}
+
+bool builtInGrid(const std::string& name, std::vector<Configuration>& out, std::string& error) {
+  std::vector<std::string> texts;
+  if (name == "default" || name == "full") {
+    // Epipolar: slices set the resolution across shafts, samples along them, the intensity
+    // refinement how many extra samples shaft edges get (docs/EPIPOLAR.md); "full" adds a longer
+    // initial step.
+    for (const char* slices : {"256", "512", "1024"}) {
+      for (const char* samples : {"256", "512"}) {
+        std::vector<const char*> marches{"intensity-refinement=0.2", "intensity-refinement=0.15"};
+        if (name == "full") marches.push_back("initial-step=32,intensity-refinement=0.2");
+        for (const char* march : marches) {
+          texts.push_back(std::string("epipolar:slices=") + slices + ",samples=" + samples + "," + march);
+        }
+      }
+    }
+    // Prefiltered: the recommended 6-moment variant, the cheapest 4-moment one and the Fourier
+    // baseline at the default rectified size, the default at a quarter of the texels; "full": every
+    // storage variant and a sixteenth.
+    std::vector<const char*> prefiltered{"basis=moments6_64", "basis=moments4_64", "basis=fourier32",
+                                         "rows=512,columns=512"};
+    if (name == "full") {
+      for (const char* more : {"basis=moments4_128", "basis=moments6_96", "basis=moments6_192", "rows=256,columns=256"}) {
+        prefiltered.push_back(more);
+      }
+    }
+    for (const char* p : prefiltered) texts.push_back(std::string("prefiltered:") + p);
+  } else if (name == "quick") {
+    texts = {"epipolar:slices=256,samples=256", "prefiltered:rows=256,columns=256"};
+  } else if (name != "none") {
+    error = "--grid must be default, full, quick or none (got '" + name + "')";
+    return false;
+  }
+  for (const std::string& text : texts) {
+    Configuration c;
+    if (!parseConfiguration(text, c, error)) return false;
+    out.push_back(c);
+  }
+  return true;
+}
+
+namespace {
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// Mean |a − b| over the RGB values of two images of one size.
+double meanAbsoluteChange(const host::ImageRgba32f& a, const host::ImageRgba32f& b) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    const double d = static_cast<double>(a.pixels[i]) - static_cast<double>(b.pixels[i]);
+    if (std::isfinite(d)) {
+      sum += std::abs(d);
+      ++count;
+    }
+  }
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
+// The scene's camera turned by `degrees` about the vertical axis through its target: a slow orbit.
+host::Camera orbit(const host::Camera& camera, double degrees) {
+  const double a = degrees * M_PI / 180.0;
+  const glm::dvec3 axis = glm::normalize(camera.up);
+  const glm::dvec3 v = camera.position - camera.target;
+  // Rodrigues' rotation of v about the axis.
+  const glm::dvec3 rotated =
+      v * std::cos(a) + glm::cross(axis, v) * std::sin(a) + axis * glm::dot(axis, v) * (1.0 - std::cos(a));
+  host::Camera out = camera;
+  out.position = camera.target + rotated;
+  return out;
+}
+
+// What one configuration (or the floor pass) produced on one scene.
+struct Measurement {
+  std::vector<double> totals;
+  std::map<std::string, std::vector<double>> passes;
+  Stats stats;
+  host::ImageRgba32f scattering;  // L_in of the last timed frame (the scene's camera)
+  double temporalChange = 0.0;    // mean |ΔL_in| per orbit frame (absolute)
+};
+
+class Sweep {
+ public:
+  Sweep(const SweepOptions& options, host::Device& device) : options_(options), device_(device) {}
+
+  bool run(std::vector<Row>& rows, std::string& error) {
+    total_ = options_.scenes.size() * options_.sizes.size() * options_.shadowMaps.size() *
+             (options_.configurations.size() + 2);
+    start_ = std::chrono::steady_clock::now();
+    for (const std::string& path : options_.scenes) {
+      host::SceneLoadResult loaded = host::loadScene(path);
+      if (!loaded.scene) {
+        error = path + ": " + loaded.error;
+        return false;
+      }
+      const std::string stem = std::filesystem::path(path).stem().string();
+      for (const auto& [width, height] : options_.sizes) {
+        for (std::uint32_t map : options_.shadowMaps) {
+          if (!runGroup(*loaded.scene, stem, width, height, map, rows, error)) return false;
+          if (options_.groupDone) options_.groupDone(rows);
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  bool runGroup(const host::Scene& scene, const std::string& stem, std::uint32_t width, std::uint32_t height,
+                std::uint32_t map, std::vector<Row>& rows, std::string& error) {
+    RenderOptions render;
+    render.width = width;
+    render.height = height;
+    render.shadowMapSize = map;
+    render.pipelineCreation = PipelineCreation::OnFirstUse;  // a context per configuration compiles only its own
+    const host::RenderSettings settings = renderSettingsFor(render, true);
+    const std::string where = stem + " " + std::to_string(width) + "x" + std::to_string(height) + " " +
+                              std::to_string(map) + "²";
+
+    Row base;
+    base.scene = stem;
+    base.width = width;
+    base.height = height;
+    base.shadowMap = map;
+
+    // The floor: the cheapest post-process at this size.
+    std::unique_ptr<FloorPass> floor = FloorPass::create(device_, error);
+    if (!floor) return false;
+    Measurement floorRun;
+    if (!measure(scene, settings, floor.get(), nullptr, floor.get(), false, floorRun, error)) return false;
+    const double floorMs = median(floorRun.totals);
+    report(where + " floor pass: " + formatMs(floorMs));
+
+    Configuration referenceConfig;
+    Measurement reference;
+    if (!measureConfiguration(scene, settings, referenceConfig, reference, error)) return false;
+    const double referenceMs = median(reference.totals);
+    const ErrorStats referenceScale = compareRgb(reference.scattering, reference.scattering);
+    const double meanReference = referenceScale.meanReference;
+    const double referenceChange = meanReference > 0.0 ? reference.temporalChange / meanReference : 0.0;
+    {
+      Row row = base;
+      fill(row, referenceConfig, reference, floorMs, referenceMs);
+      row.temporalChange = referenceChange;
+      row.temporalRatio = 1.0;
+      rows.push_back(row);
+      report(where + " " + describeRow(row));
+    }
+
+    for (const Configuration& config : options_.configurations) {
+      Row row = base;
+      row.configuration = config.name();
+      row.technique = config.techniqueName();
+      row.parameters = config.parameters();
+      row.referenceMilliseconds = referenceMs;
+      row.floorMilliseconds = floorMs;
+      if (config.technique == Technique::Prefiltered && scene.light.type != host::LightType::Directional) {
+        row.note = "prefiltered: directional lights only (a profile runs the epipolar technique for this light)";
+        rows.push_back(row);
+        report(where + " " + row.configuration + ": skipped, " + row.note);
+        continue;
+      }
+      Measurement run;
+      if (!measureConfiguration(scene, settings, config, run, error)) {
+        error = where + " " + row.configuration + ": " + error;
+        return false;
+      }
+      fill(row, config, run, floorMs, referenceMs);
+      const ErrorStats e = compareRgb(run.scattering, reference.scattering);
+      row.relativeRmse = e.relativeRmse;
+      row.relativeP99 = e.relativeP99;
+      row.relativeMax = e.relativeMax;
+      row.nonFinite = e.nonFinite;
+      row.temporalChange = meanReference > 0.0 ? run.temporalChange / meanReference : 0.0;
+      row.temporalRatio = referenceChange > 0.0 ? row.temporalChange / referenceChange : 0.0;
+      rows.push_back(row);
+      report(where + " " + describeRow(row));
+    }
+    return true;
+  }
+
+  void fill(Row& row, const Configuration& config, const Measurement& run, double floorMs, double referenceMs) const {
+    row.configuration = config.name();
+    row.technique = config.techniqueName();
+    row.parameters = config.parameters();
+    row.techniqueUsed = to_string(run.stats.technique);
+    row.measured = true;
+    row.passOrder = run.stats.passesRecorded;
+    for (const auto& [name, values] : run.passes) row.passMilliseconds[name] = median(values);
+    row.totalMilliseconds = median(run.totals);
+    row.referenceMilliseconds = referenceMs;
+    row.floorMilliseconds = floorMs;
+    row.timeRatioToReference = referenceMs > 0.0 ? row.totalMilliseconds / referenceMs : 0.0;
+    row.timeRatioToFloor = floorMs > 0.0 ? row.totalMilliseconds / floorMs : 0.0;
+    row.deviceMemoryBytes = run.stats.deviceMemoryBytes;
+    row.marchedSamples = run.stats.marchedSamples;
+    row.fixedUpPixelFraction = std::max(run.stats.fixedUpPixelFraction, 0.0);
+  }
+
+  bool measureConfiguration(const host::Scene& scene, const host::RenderSettings& settings, const Configuration& config,
+                            Measurement& out, std::string& error) {
+    // A context per configuration: its memory and pipelines are this configuration's alone.
+    std::unique_ptr<TyndallEffect> effect =
+        TyndallEffect::create(device_, settings, Profile::Balanced, error, PipelineCreation::OnFirstUse);
+    if (!effect) return false;
+    effect->setTechnique(config.technique);
+    effect->setEpipolarSettings(config.epipolar);
+    effect->setPrefilteredSettings(config.prefiltered);
+    return measure(scene, settings, effect.get(), effect.get(), nullptr, true, out, error);
+  }
+
+  // Warm-up and timed frames at the scene's camera, L_in of the last one, then the orbit.
+  bool measure(const host::Scene& scene, const host::RenderSettings& settings, host::PostProcessEffect* effect,
+               TyndallEffect* tyndall, FloorPass* floor, bool readScattering, Measurement& out, std::string& error) {
+    std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device_, scene, settings, error);
+    if (!renderer) return false;
+    renderer->addPostProcess(effect);
+    const std::uint32_t frames = options_.warmUpFrames + options_.frames;
+    for (std::uint32_t frame = 0; frame < frames; ++frame) {
+      if (!renderer->renderFrame(error)) {
+        renderer->waitIdle();
+        return false;
+      }
+      if (floor != nullptr) {
+        // The floor pass keeps one pair of stamps per slot: read each frame's before it is reused.
+        renderer->waitIdle();
+        const std::optional<double> ms = floor->lastMilliseconds();
+        if (!ms) {
+          error = "the floor pass's timestamps could not be read";
+          return false;
+        }
+        if (frame >= options_.warmUpFrames) out.totals.push_back(*ms);
+      }
+    }
+    renderer->waitIdle();
+    if (tyndall != nullptr) {
+      tyndall->context().collectTimings();
+      std::vector<FrameTimings> timings = tyndall->context().takeCompletedTimings();
+      std::sort(timings.begin(), timings.end(),
+                [](const FrameTimings& a, const FrameTimings& b) { return a.frameIndex < b.frameIndex; });
+      if (timings.size() < frames) {
+        error = "timestamps of " + std::to_string(timings.size()) + " of " + std::to_string(frames) +
+                " frames came back (does the device support timestamps?)";
+        return false;
+      }
+      for (std::size_t i = options_.warmUpFrames; i < timings.size(); ++i) {
+        out.totals.push_back(timings[i].totalMilliseconds);
+        for (const PassTiming& pass : timings[i].passes) out.passes[pass.name].push_back(pass.milliseconds);
+      }
+      out.stats = tyndall->context().stats();
+    }
+    if (!checkValidation(error)) return false;
+    if (!readScattering) return true;
+    if (!renderer->readAovScattering(out.scattering, error)) return false;
+
+    host::ImageRgba32f previous = out.scattering;
+    host::ImageRgba32f current;
+    double change = 0.0;
+    for (std::uint32_t k = 1; k <= options_.orbitFrames; ++k) {
+      if (!renderer->setCamera(orbit(scene.camera, options_.orbitDegreesPerFrame * k), error) ||
+          !renderer->renderFrame(error)) {
+        renderer->waitIdle();
+        return false;
+      }
+      renderer->waitIdle();
+      if (!renderer->readAovScattering(current, error)) return false;
+      change += meanAbsoluteChange(current, previous);
+      std::swap(previous, current);
+    }
+    out.temporalChange = options_.orbitFrames > 0 ? change / options_.orbitFrames : 0.0;
+    if (tyndall != nullptr) tyndall->context().takeCompletedTimings();
+    return checkValidation(error);
+  }
+
+  bool checkValidation(std::string& error) const {
+    if (!options_.validation || device_.validationMessages().empty()) return true;
+    error = std::to_string(device_.validationMessages().size()) +
+            " validation message(s), first: " + device_.validationMessages().front();
+    return false;
+  }
+
+  static std::string formatMs(double ms) {
+    char text[64];
+    std::snprintf(text, sizeof(text), "%.3f ms", ms);
+    return text;
+  }
+
+  static std::string describeRow(const Row& row) {
+    char text[256];
+    std::snprintf(text, sizeof(text), ": %.3f ms, %.3g x Reference, %.3g x floor, relative RMSE %.2f%%, temporal %.2f",
+                  row.totalMilliseconds, row.timeRatioToReference, row.timeRatioToFloor, 100.0 * row.relativeRmse,
+                  row.temporalRatio);
+    return row.configuration + text;
+  }
+
+  void report(const std::string& line) {
+    ++done_;
+    if (!options_.progress) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double left = done_ < total_ ? elapsed / static_cast<double>(done_) * static_cast<double>(total_ - done_) : 0.0;
+    char prefix[96];
+    std::snprintf(prefix, sizeof(prefix), "[%zu/%zu, %.0f s, about %.0f s left] ", done_, total_, elapsed, left);
+    options_.progress(prefix + line);
+  }
+
+  const SweepOptions& options_;
+  host::Device& device_;
+  std::size_t total_ = 0;
+  std::size_t done_ = 0;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
+
+bool runSweep(const SweepOptions& options, std::vector<Row>& rows, std::string& deviceName, std::string& error) {
+  host::DeviceOptions deviceOptions;
+  deviceOptions.validation = options.validation;
+  std::unique_ptr<host::Device> device = host::Device::create(deviceOptions, error);
+  if (!device) return false;
+  deviceName = device->name();
+  Sweep sweep(options, *device);
+  return sweep.run(rows, error);
+}
+
+}  // namespace tyndall::samples::bench

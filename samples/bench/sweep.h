@@ -1,0 +1,84 @@
+// tyndall-bench's sweep: scenes × output sizes × shadow-map sizes × configurations (a technique and
+// its parameters), each measured against the Reference and against the full-screen floor pass in
+// the same run (issue "Quality profiles from a measured speed–accuracy trade").
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tyndall/tyndall.h"
+
+namespace tyndall::samples::bench {
+
+/// A technique with its parameters. `parameters` is settings_text's describe() of the settings, so
+/// equal settings give equal names.
+struct Configuration {
+  Technique technique = Technique::Reference;
+  std::optional<EpipolarSettings> epipolar;
+  std::optional<PrefilteredSettings> prefiltered;
+
+  std::string techniqueName() const;  ///< "reference", "epipolar", "prefiltered"
+  std::string parameters() const;     ///< "-" for the Reference
+  std::string name() const;           ///< "epipolar slices=1024,samples=512"
+};
+
+/// "epipolar:KEY=VALUE,…", "prefiltered:KEY=VALUE,…" (tyndall-render's --epipolar/--prefiltered
+/// syntax; "epipolar:" alone: the defaults) or "reference".
+bool parseConfiguration(const std::string& text, Configuration& out, std::string& error);
+
+/// The built-in parameter grids: "default" (what docs/TRADEOFFS.md sweeps: 12 epipolar and 4
+/// prefiltered configurations), "full" (26, for a GPU), "quick" (two, for a smoke test) or "none".
+bool builtInGrid(const std::string& name, std::vector<Configuration>& out, std::string& error);
+
+struct Row;
+
+struct SweepOptions {
+  std::vector<std::string> scenes;  ///< scene JSON paths
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sizes{{640, 360}};
+  std::vector<std::uint32_t> shadowMaps{2048};
+  std::vector<Configuration> configurations;  ///< the Reference is always measured first
+  std::uint32_t warmUpFrames = 3;     ///< rendered and not timed (pipelines, caches)
+  std::uint32_t frames = 20;          ///< timed frames; the median is reported
+  std::uint32_t orbitFrames = 6;      ///< frames of the slow orbit for the temporal stability
+  double orbitDegreesPerFrame = 0.25; ///< camera rotation about its target's vertical axis per frame
+  bool validation = false;            ///< fail on any validation message
+  std::function<void(const std::string&)> progress;  ///< one line per measured configuration
+  /// Called with every row so far after each scene and size, so a long sweep that is stopped
+  /// keeps what it measured.
+  std::function<void(const std::vector<Row>&)> groupDone;
+};
+
+/// One configuration on one scene at one output and shadow-map size.
+struct Row {
+  std::string scene;  ///< file stem
+  std::uint32_t width = 0, height = 0, shadowMap = 0;
+  std::string configuration, technique, parameters;
+  std::string techniqueUsed;  ///< Stats::technique (a profile or fallback may differ)
+  bool measured = false;      ///< false: skipped, `note` says why
+  std::string note;
+  std::map<std::string, double> passMilliseconds;  ///< median per pass
+  std::vector<std::string> passOrder;              ///< recording order of the last frame
+  double totalMilliseconds = 0.0;      ///< median over the timed frames (Tyndall's first to last stamp)
+  double referenceMilliseconds = 0.0;  ///< the Reference's median, same scene and sizes
+  double floorMilliseconds = 0.0;      ///< the floor pass's median, same scene and sizes
+  double timeRatioToReference = 0.0;   ///< total / Reference (smaller is faster)
+  double timeRatioToFloor = 0.0;       ///< total / floor
+  std::uint64_t deviceMemoryBytes = 0; ///< Stats::deviceMemoryBytes of a context that ran only this
+  double relativeRmse = 0.0, relativeP99 = 0.0, relativeMax = 0.0;  ///< L_in against the Reference
+  std::size_t nonFinite = 0;
+  double temporalChange = 0.0;  ///< mean |L_in(t) − L_in(t−1)| over the orbit / mean |Reference L_in|
+  double temporalRatio = 0.0;   ///< temporalChange / the Reference's own (1: as stable as the Reference)
+  std::uint64_t marchedSamples = 0;
+  double fixedUpPixelFraction = 0.0;
+};
+
+/// Runs the sweep. False with `error` when something could not run (a scene does not load, a
+/// frame fails, validation spoke); the rows measured so far stay in `rows`.
+/// `device` receives the Vulkan device's name.
+bool runSweep(const SweepOptions& options, std::vector<Row>& rows, std::string& device, std::string& error);
+
+}  // namespace tyndall::samples::bench

@@ -19,6 +19,14 @@ double budget(Profile profile) {
   }
 }
 
+std::size_t nonFiniteRgb(const host::ImageRgba32f& image) {
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    if (i % 4 != 3 && !std::isfinite(image.pixels[i])) ++count;
+  }
+  return count;
+}
+
 double largestRgb(const host::ImageRgba32f& image) {
   double largest = 0.0;
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
@@ -30,11 +38,11 @@ double largestRgb(const host::ImageRgba32f& image) {
 }  // namespace
 
 void expectEveryProfileWithinTwiceItsBudget(const host::Scene& scene, samples::RenderOptions options,
-                                            const std::string& caseName) {
+                                            const std::string& caseName, const std::vector<KnownMiss>& knownMisses) {
   options.profile = Profile::Reference;
   options.technique = Technique::None;
   const samples::RenderResult reference = renderWithSharedContext(scene, options);
-  EXPECT_EQ(compareRgb(reference.scattering, reference.scattering).nonFinite, 0u) << "the Reference itself";
+  EXPECT_EQ(nonFiniteRgb(reference.scattering), 0u) << "the Reference itself";
   const bool zero = largestRgb(reference.scattering) == 0.0;
   for (Profile profile : {Profile::High, Profile::Balanced, Profile::Performance, Profile::Auto}) {
     SCOPED_TRACE(caseName + ", " + to_string(profile));
@@ -43,16 +51,25 @@ void expectEveryProfileWithinTwiceItsBudget(const host::Scene& scene, samples::R
     const ErrorStats s = compareRgb(r.scattering, reference.scattering);
     const ErrorStats t = compareRgb(r.transmittance, reference.transmittance);
     const Profile ran = profile == Profile::Auto ? r.stats.profileUsed : profile;
-    std::printf("[ extremes ] %s :: %s :: L_in %s :: T relative RMSE %.3g%%, NaN/Inf %zu\n", caseName.c_str(),
-                to_string(profile), zero ? "zero expected" : describe(s).c_str(), 100.0 * t.relativeRmse,
-                t.nonFinite);
+    const auto miss = std::find_if(knownMisses.begin(), knownMisses.end(),
+                                   [ran](const KnownMiss& m) { return m.profile == ran; });
+    const bool knownMiss = miss != knownMisses.end();
+    std::printf("[ extremes ] %s :: %s%s :: L_in %s :: T relative RMSE %.3g%%, NaN/Inf %zu\n", caseName.c_str(),
+                to_string(profile), knownMiss ? " (known miss)" : "", zero ? "zero expected" : describe(s).c_str(),
+                100.0 * t.relativeRmse, t.nonFinite);
     EXPECT_EQ(s.nonFinite, 0u);
     EXPECT_EQ(t.nonFinite, 0u);
     EXPECT_LE(t.relativeRmse, 1e-5) << "T is exact per pixel in every technique";
     if (zero) {
       EXPECT_EQ(largestRgb(r.scattering), 0.0);
-    } else {
+    } else if (!knownMiss) {
       EXPECT_LE(s.relativeRmse, 2.0 * budget(ran)) << describe(s) << "; " << r.stats.techniqueNote;
+    } else {
+      EXPECT_LE(s.relativeRmse, miss->ceiling) << "known miss: " << miss->why << "; " << describe(s);
+      if (s.relativeRmse <= 2.0 * budget(ran)) {
+        std::printf("[ extremes note ] %s, %s is within its bound now (%s): drop the known miss \"%s\"\n",
+                    caseName.c_str(), to_string(profile), describe(s).c_str(), miss->why.c_str());
+      }
     }
   }
   expectNoValidationMessages();

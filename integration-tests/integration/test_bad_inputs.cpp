@@ -99,6 +99,10 @@ std::vector<BadCase> badCases() {
        }},
       {"NaN view matrix", invalid, [](F& f, S&) { f.camera.view[5] = kNaN; }},
       {"singular view matrix", invalid, [](F& f, S&) { f.camera.view = Mat4{}; }},
+      {"rank-deficient view matrix", invalid,
+       [](F& f, S&) {
+         for (int row = 0; row < 4; ++row) f.camera.view[4 + row] = f.camera.view[row];  // column 1 = column 0
+       }},
       {"singular shadow matrix", invalid, [](F&, S& s) { s.shadowMaps[0].worldToShadowClip = Mat4{}; }},
       {"zero infinite-far sky distance", invalid, [](F& f, S&) {
          // Standard-Z with the far plane at infinity.

@@ -18,6 +18,7 @@
 
 #include "tyndall_host/renderer.h"
 #include "tyndall_host/scene.h"
+#include "test_support.h"
 
 // stb_image reads the PNGs back; static so that no other translation unit can clash with it.
 #pragma GCC diagnostic push
@@ -722,123 +723,6 @@ TEST_F(HostStub, ShadowMatricesFollowTheDocumentedConventions) {
   }
 }
 
-// Copies one shadow map to host memory from inside the frame, as a post-process would read it.
-struct ShadowCopyEffect : PostProcessEffect {
-  ShadowCopyEffect(Device& d, std::size_t index) : device(d), mapIndex(index) {}
-  ~ShadowCopyEffect() override {
-    if (buffer != VK_NULL_HANDLE) vkDestroyBuffer(device.device(), buffer, nullptr);
-    if (memory != VK_NULL_HANDLE) vkFreeMemory(device.device(), memory, nullptr);
-  }
-  ShadowCopyEffect(const ShadowCopyEffect&) = delete;
-  ShadowCopyEffect& operator=(const ShadowCopyEffect&) = delete;
-
-  bool createBuffer(VkDeviceSize bytes, std::string& error) {
-    VkBufferCreateInfo info{};
-    info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
-    info.size = bytes;
-    info.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
-    if (vkCreateBuffer(device.device(), &info, nullptr, &buffer) != VK_SUCCESS) {
-      error = "vkCreateBuffer";
-      return false;
-    }
-    VkMemoryRequirements requirements{};
-    vkGetBufferMemoryRequirements(device.device(), buffer, &requirements);
-    VkPhysicalDeviceMemoryProperties properties{};
-    vkGetPhysicalDeviceMemoryProperties(device.physicalDevice(), &properties);
-    const VkMemoryPropertyFlags wanted = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    for (std::uint32_t i = 0; i < properties.memoryTypeCount; ++i) {
-      if ((requirements.memoryTypeBits & (1u << i)) && (properties.memoryTypes[i].propertyFlags & wanted) == wanted) {
-        VkMemoryAllocateInfo allocInfo{};
-        allocInfo.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
-        allocInfo.allocationSize = requirements.size;
-        allocInfo.memoryTypeIndex = i;
-        if (vkAllocateMemory(device.device(), &allocInfo, nullptr, &memory) != VK_SUCCESS ||
-            vkBindBufferMemory(device.device(), buffer, memory, 0) != VK_SUCCESS ||
-            vkMapMemory(device.device(), memory, 0, VK_WHOLE_SIZE, 0, &mapped) != VK_SUCCESS) {
-          error = "buffer memory";
-          return false;
-        }
-        return true;
-      }
-    }
-    error = "no host-visible memory";
-    return false;
-  }
-
-  bool record(VkCommandBuffer cmd, const PostProcessInputs& inputs, std::string& error) override {
-    if (mapIndex >= inputs.shadowMaps.size()) {
-      error = "no such shadow map";
-      return false;
-    }
-    const HostShadowMap& map = inputs.shadowMaps[mapIndex];
-    size = map.depth.extent.width;
-    worldToShadowClip = map.worldToShadowClip;
-    if (buffer == VK_NULL_HANDLE && !createBuffer(VkDeviceSize{size} * size * 4, error)) return false;
-
-    VkImageMemoryBarrier2 toCopy{};
-    toCopy.sType = VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2;
-    toCopy.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;  // whoever wrote it, in any stage
-    toCopy.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    toCopy.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    toCopy.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-    toCopy.oldLayout = map.depth.layout;
-    toCopy.newLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    toCopy.srcQueueFamilyIndex = toCopy.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    toCopy.image = map.depth.image;
-    toCopy.subresourceRange = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 1, 0, 1};
-    VkDependencyInfo dependency{};
-    dependency.sType = VK_STRUCTURE_TYPE_DEPENDENCY_INFO;
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &toCopy;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_DEPTH_BIT, 0, 0, 1};
-    region.imageExtent = {size, size, 1};
-    vkCmdCopyImageToBuffer(cmd, map.depth.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, buffer, 1, &region);
-
-    VkImageMemoryBarrier2 back = toCopy;
-    back.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    back.srcAccessMask = VK_ACCESS_2_NONE;
-    back.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    back.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
-    back.oldLayout = VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    back.newLayout = map.depth.layout;
-    VkBufferMemoryBarrier2 toHost{};
-    toHost.sType = VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2;
-    toHost.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-    toHost.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-    toHost.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-    toHost.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-    toHost.srcQueueFamilyIndex = toHost.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    toHost.buffer = buffer;
-    toHost.size = VK_WHOLE_SIZE;
-    dependency.pImageMemoryBarriers = &back;
-    dependency.bufferMemoryBarrierCount = 1;
-    dependency.pBufferMemoryBarriers = &toHost;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-    return true;
-  }
-  bool resize(VkExtent2D, std::string&) override { return true; }
-
-  // Clip-space position of `p` and the stored depth of the texel it falls in (u → column, v → row).
-  void lookup(const glm::dvec3& p, glm::dvec3& ndc, float& stored) const {
-    const glm::dvec4 clip = glm::dmat4(worldToShadowClip) * glm::dvec4(p, 1.0);
-    ndc = glm::dvec3(clip) / clip.w;
-    const auto column = static_cast<std::uint32_t>((ndc.x + 1.0) * 0.5 * size);
-    const auto row = static_cast<std::uint32_t>((ndc.y + 1.0) * 0.5 * size);
-    stored = static_cast<const float*>(mapped)[static_cast<std::size_t>(row) * size + column];
-  }
-
-  Device& device;
-  std::size_t mapIndex;
-  VkBuffer buffer = VK_NULL_HANDLE;
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  void* mapped = nullptr;
-  std::uint32_t size = 0;
-  glm::mat4 worldToShadowClip{1.0f};
-};
-
 // The map holds, at the texel the matrix maps a point to, the depth of the surface nearest the
 // light: along a light ray through a box, its entry point, not its exit point.
 TEST_F(HostStub, ShadowMapHoldsTheNearestSurfaceAtTheDocumentedTexel) {
@@ -852,9 +736,9 @@ TEST_F(HostStub, ShadowMapHoldsTheNearestSurfaceAtTheDocumentedTexel) {
                         {pointScene(), 3, {1.2, 2.0, 0.0}}};  // −Y face
   for (const Case& c : cases) {
     SCOPED_TRACE(static_cast<int>(c.scene.light.type));
-    ShadowCopyEffect copy(*device_, c.map);
+    tyndall::test::ShadowMapCopy copy(*device_, c.map);
     render(c.scene, smallSettings(), 1, {&copy});
-    ASSERT_NE(copy.mapped, nullptr);
+    ASSERT_TRUE(copy.copied());
 
     const Object* target = nullptr;
     for (const Object& object : c.scene.objects) {

@@ -32,12 +32,24 @@ bool finite(const Mat4& m) {
   return true;
 }
 
-// A matrix is usable when finite and its determinant is not negligible against its scale.
-bool invertible(const glm::dmat4& m) {
-  double scale = 0.0;
-  for (int c = 0; c < 4; ++c) scale = std::max(scale, glm::length(m[c]));
+// A matrix is usable when finite and not singular. Singular is judged after scaling every column
+// and then every row to unit length, so that the test does not depend on units: a view matrix's
+// translation column is the camera's distance from the origin, and a directional light's
+// orthographic matrix scales by the inverse of the scene's size — a test against the largest
+// column (|det| > 1e-12 · scale⁴) rejected cameras ~1000 units from the origin.
+bool invertible(glm::dmat4 m) {
+  for (int c = 0; c < 4; ++c) {
+    const double length = glm::length(m[c]);
+    if (!(length > 0.0) || !std::isfinite(length)) return false;
+    m[c] /= length;
+  }
+  for (int r = 0; r < 4; ++r) {
+    const double length = std::sqrt(m[0][r] * m[0][r] + m[1][r] * m[1][r] + m[2][r] * m[2][r] + m[3][r] * m[3][r]);
+    if (!(length > 0.0)) return false;
+    for (int c = 0; c < 4; ++c) m[c][r] /= length;
+  }
   const double det = glm::determinant(m);
-  return std::isfinite(det) && std::abs(det) > 1e-12 * std::pow(scale, 4.0);
+  return std::isfinite(det) && std::abs(det) > 1e-12;
 }
 
 Outcome invalid(std::string message) { return failure(Status::InvalidArgument, std::move(message)); }

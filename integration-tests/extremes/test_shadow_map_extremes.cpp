@@ -30,22 +30,6 @@ samples::RenderOptions options(std::uint32_t mapSize) {
   return o;
 }
 
-host::Object plane(const glm::dvec3& point, const glm::dvec3& normal) {
-  host::Object o;
-  o.type = host::ObjectType::Plane;
-  o.point = point;
-  o.normal = normal;
-  return o;
-}
-
-host::Object box(const glm::dvec3& center, const glm::dvec3& halfExtents) {
-  host::Object o;
-  o.type = host::ObjectType::Box;
-  o.center = center;
-  o.halfExtents = halfExtents;
-  return o;
-}
-
 // A low sun grazing a cliff face (the plane x = 3, lit from −x), a pillar half built into the cliff
 // and a pole in the open, seen from downstream looking towards the sun. The host fits the
 // directional map's depth range to the finite casters (the pillar's and the pole's tops nearest the
@@ -76,8 +60,8 @@ host::Scene grazingCliff() {
   medium.phase = host::PhaseType::HenyeyGreenstein;
   medium.g = 0.6;
   scene.medium = {medium};
-  scene.objects = {plane({0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}), plane({3.0, 0.0, 0.0}, {-1.0, 0.0, 0.0}),
-                   box({3.0, 3.0, -2.0}, {1.0, 3.0, 1.0}), box({-3.0, 4.0, -2.0}, {0.3, 4.0, 0.3})};
+  scene.objects = {planeObject({0.0, 0.0, 0.0}, {0.0, 1.0, 0.0}), planeObject({3.0, 0.0, 0.0}, {-1.0, 0.0, 0.0}),
+                   boxObject({3.0, 3.0, -2.0}, {1.0, 3.0, 1.0}), boxObject({-3.0, 4.0, -2.0}, {0.3, 4.0, 0.3})};
   scene.shadowMapSize = kMapSize;
   return scene;
 }

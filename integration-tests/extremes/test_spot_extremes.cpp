@@ -76,18 +76,11 @@ TEST(SpotExtremes, LightInsideAnOccludersBoundingBox) {
   scene.light.innerConeDegrees = 45.0;
   scene.light.outerConeDegrees = 60.0;
   scene.light.intensity = 30.0;
-  auto box = [](glm::dvec3 center, glm::dvec3 halfExtents) {
-    host::Object o;
-    o.type = host::ObjectType::Box;
-    o.center = center;
-    o.halfExtents = halfExtents;
-    return o;
-  };
   // Top, ±x walls and +z wall down to y = 3.4; the −z wall only down to y = 3.7 (67° from the axis).
   for (const host::Object& wall :
-       {box({0.0, 4.35, 0.0}, {0.8, 0.05, 0.8}), box({0.75, 3.85, 0.0}, {0.05, 0.45, 0.8}),
-        box({-0.75, 3.85, 0.0}, {0.05, 0.45, 0.8}), box({0.0, 3.85, 0.75}, {0.7, 0.45, 0.05}),
-        box({0.0, 4.0, -0.75}, {0.7, 0.3, 0.05})}) {
+       {boxObject({0.0, 4.35, 0.0}, {0.8, 0.05, 0.8}), boxObject({0.75, 3.85, 0.0}, {0.05, 0.45, 0.8}),
+        boxObject({-0.75, 3.85, 0.0}, {0.05, 0.45, 0.8}), boxObject({0.0, 3.85, 0.75}, {0.7, 0.45, 0.05}),
+        boxObject({0.0, 4.0, -0.75}, {0.7, 0.3, 0.05})}) {
     scene.objects.push_back(wall);
   }
   glm::dvec3 lo(1e9);

@@ -62,6 +62,22 @@ ErrorStats compareRgb(const host::ImageRgba32f& measured, const host::ImageRgba3
   return samples::compareRgb(measured, reference, mask);
 }
 
+host::Object planeObject(const glm::dvec3& point, const glm::dvec3& normal) {
+  host::Object o;
+  o.type = host::ObjectType::Plane;
+  o.point = point;
+  o.normal = normal;
+  return o;
+}
+
+host::Object boxObject(const glm::dvec3& center, const glm::dvec3& halfExtents) {
+  host::Object o;
+  o.type = host::ObjectType::Box;
+  o.center = center;
+  o.halfExtents = halfExtents;
+  return o;
+}
+
 host::Scene withEpipoleAt(host::Scene scene, glm::dvec2 ndc, bool behind, std::uint32_t width, std::uint32_t height) {
   const glm::dvec3 toLight = (behind ? 1.0 : -1.0) * glm::normalize(scene.light.direction);
   const double tanHalf = std::tan(glm::radians(scene.camera.fovYDegrees) * 0.5);

@@ -39,6 +39,10 @@ ErrorStats compareRgb(const host::ImageRgba32f& measured, const host::ImageRgba3
 /// test_epipolar.cpp's placements, shared.)
 host::Scene withEpipoleAt(host::Scene scene, glm::dvec2 ndc, bool behind, std::uint32_t width, std::uint32_t height);
 
+/// Scene objects with the host's default albedo, for scenes built in a test.
+host::Object planeObject(const glm::dvec3& point, const glm::dvec3& normal);
+host::Object boxObject(const glm::dvec3& center, const glm::dvec3& halfExtents);
+
 /// Renders `frames` frames with the options' profile and reads the AOVs back.
 samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOptions options);
 

@@ -44,14 +44,6 @@ std::map<std::string, DocumentRow> choiceTable(const std::string& path) {
   return rows;
 }
 
-const char* techniqueName(Technique technique) {
-  switch (technique) {
-    case Technique::Epipolar: return "epipolar";
-    case Technique::Prefiltered: return "prefiltered";
-    default: return "reference";
-  }
-}
-
 TEST(TradeoffsDocument, AgreesWithTheProfileTable) {
   const std::string path = std::string(TYNDALL_DOCS_DIR) + "/TRADEOFFS.md";
   const std::map<std::string, DocumentRow> rows = choiceTable(path);
@@ -63,7 +55,7 @@ TEST(TradeoffsDocument, AgreesWithTheProfileTable) {
     name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
     ASSERT_TRUE(rows.contains(name)) << path << " names no configuration for " << name;
     const DocumentRow& doc = rows.at(name);
-    EXPECT_EQ(doc.technique, techniqueName(code.technique));
+    EXPECT_EQ(doc.technique, to_string(code.technique));
     const std::string codeParameters = code.technique == Technique::Prefiltered ? samples::describe(code.prefiltered)
                                                                                   : samples::describe(code.epipolar);
     EXPECT_EQ(doc.parameters, codeParameters);

@@ -10,19 +10,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "error_metrics.h"
 #include "plot.h"
+#include "render_job.h"
 #include "tyndall_host/renderer.h"
 
 namespace tyndall::samples::bench {
 
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 std::string format(const char* pattern, double value) {
   char text[64];
@@ -34,22 +29,6 @@ std::string percent(double fraction) { return format("%.2f%%", 100.0 * fraction)
 std::string speedup(double ratio) { return ratio > 0.0 ? format("%.1f×", 1.0 / ratio) : "-"; }
 std::string groupName(std::uint32_t w, std::uint32_t h, std::uint32_t map) {
   return std::to_string(w) + "x" + std::to_string(h) + "-" + std::to_string(map);
-}
-
-bool writeFile(const std::filesystem::path& path, const std::string& bytes, std::string& error) {
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream file(tmp, std::ios::binary);
-    file << bytes;
-    if (!file) {
-      error = "cannot write " + path.string();
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) error = "cannot write " + path.string() + ": " + ec.message();
-  return !ec;
 }
 
 // CSV field: quoted when it holds a comma or a quote.
@@ -154,24 +133,27 @@ std::string summariesMarkdown(const std::vector<Summary>& summaries, const std::
   return out;
 }
 
-std::vector<PlotPoint> plotPoints(const std::vector<Summary>& summaries, const std::vector<ProfileChoiceResult>* choice) {
+// One point per summary but the Reference's ((1, 0) by definition); `summaryOf[i]` is point i's
+// summary.
+std::vector<PlotPoint> plotPoints(const std::vector<Summary>& summaries, const std::vector<ProfileChoiceResult>& choice,
+                                  std::vector<std::size_t>& summaryOf) {
   std::vector<PlotPoint> points;
+  summaryOf.clear();
   for (std::size_t i = 0; i < summaries.size(); ++i) {
     const Summary& s = summaries[i];
-    if (s.technique == "reference") continue;  // (1, 0) by definition
+    if (s.technique == to_string(Technique::Reference)) continue;
     PlotPoint p;
-    p.label = s.technique + " " + s.parameters;
+    p.label = s.configuration;
     p.series = s.technique;
     p.x = s.timeRatioToReference;
     p.y = s.relativeRmse;
-    if (choice != nullptr) {
-      for (const ProfileChoiceResult& c : *choice) {
-        if (c.summary != i) continue;
-        if (!p.marker.empty()) p.marker += '/';
-        p.marker += c.goal.profile;
-      }
+    for (const ProfileChoiceResult& c : choice) {
+      if (c.summary != i) continue;
+      if (!p.marker.empty()) p.marker += '/';
+      p.marker += c.goal.profile;
     }
     points.push_back(p);
+    summaryOf.push_back(i);
   }
   return points;
 }
@@ -239,7 +221,7 @@ std::vector<ProfileChoiceResult> chooseProfiles(const std::vector<Summary>& summ
   for (const ProfileGoal& goal : profileGoals()) {
     ProfileChoiceResult c{goal, std::nullopt};
     const auto candidate = [](const Summary& s) {
-      return s.technique != "reference" && s.nonFinite == 0 && s.timeRatioToReference > 0.0;
+      return s.technique != to_string(Technique::Reference) && s.nonFinite == 0 && s.timeRatioToReference > 0.0;
     };
     // The scenes on which some configuration meets the per-scene bar: there, each must.
     std::set<std::string> barScenes;
@@ -309,7 +291,7 @@ bool readResults(const std::string& path, std::vector<Row>& rows, ReportContext&
       r.shadowMap = j.at("shadowMap").get<std::uint32_t>();
       r.technique = j.at("technique").get<std::string>();
       r.parameters = j.at("parameters").get<std::string>();
-      r.configuration = r.technique == "reference" ? r.technique : r.technique + " " + r.parameters;
+      r.configuration = configurationName(r.technique, r.parameters);
       r.techniqueUsed = j.at("techniqueUsed").get<std::string>();
       r.measured = j.at("measured").get<bool>();
       r.note = j.at("note").get<std::string>();
@@ -358,7 +340,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   const std::filesystem::path dir(directory);
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (!writeFile(dir / "results.csv", rowsCsv(rows), error)) return false;
+  if (!writeFileWhole((dir / "results.csv").string(), rowsCsv(rows), error)) return false;
   nlohmann::ordered_json all;
   all["device"] = context.device;
   all["command"] = context.commandLine;
@@ -369,8 +351,8 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   all["chooseAt"] = {context.chooseWidth, context.chooseHeight, context.chooseShadowMap};
   all["rows"] = nlohmann::ordered_json::array();
   for (const Row& r : rows) all["rows"].push_back(rowJson(r));
-  if (!writeFile(dir / "results.json", all.dump(2) + "\n", error)) return false;
-  if (!writeFile(dir / "results.md", rowsMarkdown(rows), error)) return false;
+  if (!writeFileWhole((dir / "results.json").string(), all.dump(2) + "\n", error)) return false;
+  if (!writeFileWhole((dir / "results.md").string(), rowsMarkdown(rows), error)) return false;
 
   // Per group: the summaries and their plot.
   std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> groups;
@@ -385,20 +367,15 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
     const std::vector<Summary> summaries = summarize(rows, w, h, map);
     const bool chooseHere = w == context.chooseWidth && h == context.chooseHeight && map == context.chooseShadowMap;
     std::vector<ProfileChoiceResult> groupChoice = chooseProfiles(summaries);
-    const std::vector<PlotPoint> points = plotPoints(summaries, &groupChoice);
-    const std::vector<std::size_t> front = paretoFront(points);
-    // Front indices are into the points, which leave out the Reference: map them back.
+    std::vector<std::size_t> summaryOf;
+    const std::vector<PlotPoint> points = plotPoints(summaries, groupChoice, summaryOf);
     std::vector<std::size_t> frontSummaries;
-    for (std::size_t p : front) {
-      for (std::size_t i = 0; i < summaries.size(); ++i) {
-        if (summaries[i].technique + " " + summaries[i].parameters == points[p].label) frontSummaries.push_back(i);
-      }
-    }
+    for (std::size_t p : paretoFront(points)) frontSummaries.push_back(summaryOf[p]);
     PlotSpec spec;
     spec.title = std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) +
                  "² shadow map: median over the scenes (" + context.device + ")";
     const std::string stem = "pareto-" + groupName(w, h, map);
-    if (!writeFile(dir / (stem + ".svg"), plotSvg(points, spec), error)) return false;
+    if (!writeFileWhole((dir / (stem + ".svg")).string(), plotSvg(points, spec), error)) return false;
     std::vector<std::uint8_t> rgba8;
     constexpr std::uint32_t kPngWidth = 1280, kPngHeight = 800;
     plotRgba8(points, spec, kPngWidth, kPngHeight, rgba8);
@@ -453,7 +430,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
                    (s.timeSpread < 0.15 ? "met" : "**missed**") + ").\n";
     }
   }
-  if (!writeFile(dir / "choice.json", choiceJson.dump(2) + "\n", error)) return false;
+  if (!writeFileWhole((dir / "choice.json").string(), choiceJson.dump(2) + "\n", error)) return false;
 
   // Per scene for the chosen configurations.
   std::string perScene = "| profile | scene | ms | speedup | × floor | relative RMSE | p99 | temporal |\n"
@@ -506,7 +483,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   doc += "Per scene:\n\n" + perScene + "\n";
   doc += "## Every configuration (median over the scenes)\n" + summariesText + "\n";
   doc += "## Every measurement\n\n" + rowsMarkdown(rows);
-  return writeFile(dir / "tradeoffs.md", doc, error);
+  return writeFileWhole((dir / "tradeoffs.md").string(), doc, error);
 }
 
 }  // namespace tyndall::samples::bench

@@ -15,13 +15,11 @@
 
 namespace tyndall::samples::bench {
 
-std::string Configuration::techniqueName() const {
-  switch (technique) {
-    case Technique::Epipolar: return "epipolar";
-    case Technique::Prefiltered: return "prefiltered";
-    default: return "reference";
-  }
+std::string configurationName(const std::string& technique, const std::string& parameters) {
+  return technique == to_string(Technique::Reference) ? technique : technique + " " + parameters;
 }
+
+std::string Configuration::techniqueName() const { return to_string(technique); }
 
 std::string Configuration::parameters() const {
   if (technique == Technique::Epipolar) return describe(epipolar.value_or(EpipolarSettings{}));
@@ -29,9 +27,7 @@ std::string Configuration::parameters() const {
   return "-";
 }
 
-std::string Configuration::name() const {
-  return technique == Technique::Reference ? techniqueName() : techniqueName() + " " + parameters();
-}
+std::string Configuration::name() const { return configurationName(techniqueName(), parameters()); }
 
 bool parseConfiguration(const std::string& text, Configuration& out, std::string& error) {
   const std::size_t colon = text.find(':');
@@ -99,13 +95,6 @@ bool builtInGrid(const std::string& name, std::vector<Configuration>& out, std::
 }
 
 namespace {
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 // Mean |a − b| over the RGB values of two images of one size.
 double meanAbsoluteChange(const host::ImageRgba32f& a, const host::ImageRgba32f& b) {
@@ -332,7 +321,6 @@ class Sweep {
       std::swap(previous, current);
     }
     out.temporalChange = options_.orbitFrames > 0 ? change / options_.orbitFrames : 0.0;
-    if (tyndall != nullptr) tyndall->context().takeCompletedTimings();
     return checkValidation(error);
   }
 

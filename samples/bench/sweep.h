@@ -26,6 +26,10 @@ struct Configuration {
   std::string name() const;           ///< "epipolar slices=1024,samples=512"
 };
 
+/// A configuration's name from its technique and parameters (Configuration::name, and the rows
+/// read back from results.json): the technique alone for the Reference.
+std::string configurationName(const std::string& technique, const std::string& parameters);
+
 /// "epipolar:KEY=VALUE,…", "prefiltered:KEY=VALUE,…" (tyndall-render's --epipolar/--prefiltered
 /// syntax; "epipolar:" alone: the defaults) or "reference".
 bool parseConfiguration(const std::string& text, Configuration& out, std::string& error);

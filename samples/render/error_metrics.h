@@ -29,6 +29,10 @@ ErrorStats compareRgb(const host::ImageRgba32f& measured, const std::vector<doub
 ErrorStats compareRgb(const host::ImageRgba32f& measured, const host::ImageRgba32f& reference,
                       const std::vector<unsigned char>* mask = nullptr);
 
+/// The median of the values (the mean of the middle two for an even count); 0 for none. Timings
+/// are reported as medians over frames (tyndall-render's JSON, tyndall-bench).
+double median(std::vector<double> values);
+
 /// "relative RMSE …%, p99 …%, max …%, NaN/Inf n, mean |ref| … over n values".
 std::string describe(const ErrorStats& stats);
 

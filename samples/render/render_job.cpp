@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "error_metrics.h"
 #include "settings_text.h"
 #include "tyndall_effect.h"
 
@@ -27,13 +28,6 @@ bool parseProfile(const std::string& name, Profile& out) {
     }
   }
   return false;
-}
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace
@@ -295,7 +289,15 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
 
 namespace {
 
-bool writeText(const std::string& path, const std::string& text, std::string& error) {
+void makeParent(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+}
+
+}  // namespace
+
+bool writeFileWhole(const std::string& path, const std::string& text, std::string& error) {
   const std::string tmp = path + ".tmp";
   {
     std::ofstream file(tmp, std::ios::binary);
@@ -313,14 +315,6 @@ bool writeText(const std::string& path, const std::string& text, std::string& er
   }
   return true;
 }
-
-void makeParent(const std::string& path) {
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  std::error_code ec;
-  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-}
-
-}  // namespace
 
 bool writeOutputs(const RenderOptions& options, const RenderResult& result, std::string& error) {
   for (const std::string* path : {&options.outputPng, &options.outputExr, &options.aovScattering,
@@ -346,7 +340,7 @@ bool writeOutputs(const RenderOptions& options, const RenderResult& result, std:
     }
     if (!host::writePng(options.debugViewPng, view.width, view.height, rgba8, error)) return false;
   }
-  if (!options.timings.empty() && !writeText(options.timings, timingsJson(options, result), error)) return false;
+  if (!options.timings.empty() && !writeFileWhole(options.timings, timingsJson(options, result), error)) return false;
   return true;
 }
 

@@ -83,6 +83,9 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
 /// Median per pass and of the total over the timed frames, as JSON text.
 std::string timingsJson(const RenderOptions& options, const RenderResult& result);
 
+/// Writes `text` to `path` through a temporary file and a rename, so the file is whole or absent.
+bool writeFileWhole(const std::string& path, const std::string& text, std::string& error);
+
 /// Writes every output the options name (PNG through the OpenColorIO display transform, EXRs,
 /// timings JSON). Files are written whole or not at all.
 bool writeOutputs(const RenderOptions& options, const RenderResult& result, std::string& error);

@@ -105,10 +105,12 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
     o.profile = profile;
     const samples::RenderResult r = renderWithAovs(scene, o);
     const ErrorStats s = compareRgb(r.scattering, reference.scattering);
-    std::printf("[ %s %s ] vs reference: %s; %llu samples marched (%.1f%% of the pixels), %.2f%% fixed up\n",
+    std::printf("[ %s %s ] vs reference: %s; %llu samples marched (%.1f%% of the pixels), %llu found in shadow "
+                "without marching, %.2f%% fixed up\n",
                 name.c_str(), to_string(profile), describe(s).c_str(),
                 static_cast<unsigned long long>(r.stats.marchedSamples),
-                100.0 * double(r.stats.marchedSamples) / pixels, 100.0 * r.stats.fixedUpPixelFraction);
+                100.0 * double(r.stats.marchedSamples) / pixels,
+                static_cast<unsigned long long>(r.stats.shadowedSamples), 100.0 * r.stats.fixedUpPixelFraction);
     EXPECT_EQ(r.stats.technique, Technique::Epipolar) << r.stats.techniqueNote;
     EXPECT_EQ(s.nonFinite, 0u);
     EXPECT_GT(s.meanReference, 0.0);
@@ -183,6 +185,12 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarTree,
                            return name;
                          });
 
+const std::vector<std::string> kDirectionalPasses = {
+    "epipolar_slice_end_points", "epipolar_coordinates", "epipolar_slice_uv", "epipolar_min_max_tree",
+    "epipolar_refine", "epipolar_march_args", "epipolar_march", "epipolar_refine_intensity",
+    "epipolar_march_args_refined", "epipolar_march_refined", "epipolar_interpolate", "epipolar_unwarp",
+    "epipolar_fixup_args", "epipolar_fixup", "composite", "aov_output"};
+
 // The passes follow what the frame needs (DESIGN.md "Model only what the scene requires"): a
 // directional light records no scattering table; a frame without in-scattering (σ_s = 0, σ_a > 0)
 // records only the unwarp, which writes the exact T (the Reference's, to the bit) and L_in = 0.
@@ -194,11 +202,7 @@ TEST(EpipolarPasses, FollowTheFrame) {
   o.shadowMapSize = 256;
   const samples::RenderResult directional = renderWithSharedContext(scene, o);
   EXPECT_EQ(directional.stats.passesRecorded,
-            (std::vector<std::string>{"epipolar_slice_end_points", "epipolar_coordinates", "epipolar_refine",
-                                      "epipolar_slice_uv", "epipolar_min_max_tree", "epipolar_march_args",
-                                      "epipolar_march", "epipolar_refine_intensity", "epipolar_march_args_refined",
-                                      "epipolar_march_refined", "epipolar_interpolate", "epipolar_unwarp",
-                                      "epipolar_fixup_args", "epipolar_fixup", "composite", "aov_output"}));
+            kDirectionalPasses);
 
   for (host::MediumComponent& m : scene.medium) {
     m.absorption += m.scattering;
@@ -218,6 +222,66 @@ TEST(EpipolarPasses, FollowTheFrame) {
     smallestT = std::min(smallestT, double(absorbing.transmittance.pixels[i]));
   }
   EXPECT_LT(smallestT, 0.9);  // the medium attenuates: T was computed, not left at 1
+  expectNoValidationMessages();
+}
+
+// A light that reaches no visible point: a wall covering the screen, the light behind it shining
+// at the camera (directional, and a spot light whose cone holds the camera). Only the shadow map
+// knows, so the decision is the GPU's: the refinement finds every sample's whole ray in shadow on
+// its slice's tree, lists nothing, and the march's indirect dispatches run zero groups (the passes
+// stay recorded, empty, like the fix-up's). L_in is then exactly zero, as the Reference's is; T is
+// exact. Without the wall the same frame marches.
+TEST(EpipolarPasses, LightBehindAWallMarchesNothing) {
+  host::Scene scene = loadTestScene("analytic-mixed");
+  scene.camera.position = {0.0, 2.0, 10.0};
+  scene.camera.target = {0.0, 2.0, 0.0};
+  scene.light.direction = glm::normalize(glm::dvec3(0.1, -0.2, 1.0));
+  // The view frustum at the wall is ±10.3 × ±5.8; the wall's shadow, shifted by at most 2 units
+  // over the 10 to the camera, covers every view ray (and keeps clear texels far from them).
+  scene.objects = {boxObject({0.0, 2.0, 0.0}, {30.0, 30.0, 0.5})};
+  samples::RenderOptions o = options(Technique::Epipolar);
+  o.frames = 3;  // the counts of a frame are read when its slot comes round again
+  // A spot light behind the wall too, the camera inside its cone.
+  host::Light spot = scene.light;
+  spot.type = host::LightType::Spot;
+  spot.position = {0.0, 2.0, -10.0};
+  spot.direction = {0.0, 0.0, 1.0};
+  spot.innerConeDegrees = 30.0;
+  spot.outerConeDegrees = 40.0;
+  spot.intensity = 30.0;
+  const host::Light directional = scene.light;
+  for (const host::Light& light : {directional, spot}) {
+    scene.light = light;
+    const samples::RenderResult walled = renderWithSharedContext(scene, o);
+    samples::RenderOptions ref = o;
+    ref.technique = Technique::Reference;
+    const samples::RenderResult reference = renderWithSharedContext(scene, ref);
+    const bool isSpot = light.type == host::LightType::Spot;
+    SCOPED_TRACE(isSpot ? "spot light" : "directional light");
+
+    const std::vector<std::string>& p = walled.stats.passesRecorded;
+    if (isSpot) {
+      EXPECT_NE(std::find(p.begin(), p.end(), "epipolar_march"), p.end());  // recorded, sized on the GPU
+    } else {
+      EXPECT_EQ(p, kDirectionalPasses);
+    }
+    EXPECT_EQ(walled.stats.marchedSamples, 0u);
+    EXPECT_GT(walled.stats.shadowedSamples, std::uint64_t(kWidth) * kHeight / 16);
+    EXPECT_GT(walled.stats.fixedUpPixelFraction, 0.0);  // the epipole's block, marched per pixel
+    for (std::size_t i = 0; i < walled.scattering.pixels.size(); i += 4) {  // RGBA
+      for (std::size_t c = 0; c < 3; ++c) {
+        ASSERT_EQ(walled.scattering.pixels[i + c], 0.0f) << "L_in at value " << i;
+        ASSERT_EQ(reference.scattering.pixels[i + c], 0.0f) << "the Reference's L_in at value " << i;
+      }
+    }
+    EXPECT_EQ(compareRgb(walled.transmittance, reference.transmittance).relativeMax, 0.0);
+  }
+
+  scene.light = directional;
+  scene.objects.clear();
+  const samples::RenderResult open = renderWithSharedContext(scene, o);
+  EXPECT_GT(open.stats.marchedSamples, 0u);
+  EXPECT_EQ(open.stats.shadowedSamples, 0u);  // nothing casts a shadow
   expectNoValidationMessages();
 }
 

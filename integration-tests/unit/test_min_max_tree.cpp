@@ -434,6 +434,74 @@ TEST(MinMaxMarch, TreeEqualsPlainMarchForEveryMaxStep) {
               "worst plain vs double %.2e of the unshadowed integral\n", rays, worst_tree, worst_double);
 }
 
+// The whole-ray shadow test the refinement runs before the march (a sample it accepts is set to
+// zero and never marched): whenever it says "shadowed", both marches give exactly zero, for every
+// maximum step; and it does say so for most rays whose plain march is zero.
+TEST(MinMaxShadowTest, ShadowedRaysMarchToExactlyZero) {
+  std::mt19937 rng(2026);
+  long accepted = 0, zero_rays = 0, rays = 0, bad_reads = 0;
+  for (Profile kind : kProfiles) {
+    for (int n : {64, 512, 4096}) {
+      for (int p = 0; p < (n == 4096 ? 3 : 10); ++p) {
+        const Slice s = makeProfile(kind, n, rng);
+        for (int i = 0; i < 60; ++i) {
+          TynMinMaxRay r = randomRay(n, rng);
+          // Half the rays lifted above the profile's range, where a shadowed verdict is possible.
+          if (i % 2 == 0) r.depth_begin = std::max(r.depth_begin, uniform(rng, 0.85f, 0.99f));
+          const SliceAccess plain_access{&s, -1};
+          const bool plain_zero = tyn_min_max_march_plain(plain_access, n, r, false).lit_integral == vec3(0.0f);
+          const int highest = tyn_min_max_highest_level(n);
+          for (int top = 0; top <= highest; ++top) {
+            const SliceAccess access{&s, top};
+            const bool shadowed = tyn_min_max_ray_shadowed(access, n, top, r);
+            bad_reads += access.bad_reads;
+            if (!shadowed) continue;
+            ++accepted;
+            ASSERT_TRUE(plain_zero) << profileName(kind) << " L " << n << " top " << top << " ray " << i;
+            ASSERT_EQ(tyn_min_max_march_tree(access, n, top, r, false).lit_integral, vec3(0.0f))
+                << profileName(kind) << " L " << n << " top " << top << " ray " << i;
+          }
+          if (plain_zero) zero_rays += highest + 1;
+          rays += highest + 1;
+        }
+      }
+    }
+  }
+  std::printf("[ MinMax ] whole-ray shadow test: %ld of %ld (ray, max step) pairs march to zero, %ld of them "
+              "found without marching\n", zero_rays, rays, accepted);
+  EXPECT_EQ(bad_reads, 0);
+  EXPECT_GT(zero_rays, rays / 20);
+  EXPECT_GE(double(accepted), 0.5 * double(zero_rays));
+}
+
+// A tilted occluder (depth rising along the slice by much more than the gap under it) over a ray
+// just below it: no single bound over the ray's span shows it shadowed (the occluder's far end is
+// deeper than the ray's near end), the walk down the tree does; lifting the ray's far end to the
+// occluder lights a sliver, and the test then says no.
+TEST(MinMaxShadowTest, DescendsUnderATiltedOccluder) {
+  const int n = 512;
+  Slice s;
+  s.sample_count = n;
+  for (int k = 0; k < n; ++k) s.samples.push_back(0.2f + 0.6f * (float(k) + 0.5f) / float(n));
+  for (int k = 0; k < n; ++k) {
+    const float lo = s.samples[static_cast<size_t>(std::max(k - 1, 0))];
+    const float hi = s.samples[static_cast<size_t>(std::min(k + 1, n - 1))];
+    s.cells.push_back(vec2(lo, hi));
+  }
+  buildTree(s);
+  const SliceAccess access{&s, tyn_min_max_highest_level(n)};
+  // 0.02 deeper than the occluder everywhere: z from 0.22 to 0.82.
+  const TynMinMaxRay under = tyn_min_max_ray(0.0f, float(n), 0.22f, 0.82f, 0.0f, 100.0f, vec3(0.01f));
+  const vec2 whole = access.fetch(tyn_min_max_highest_level(n), 0);
+  ASSERT_GT(whole.y, 0.22f);  // one bound over the span cannot decide
+  EXPECT_TRUE(tyn_min_max_ray_shadowed(access, n, tyn_min_max_highest_level(n), under));
+  EXPECT_EQ(tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), under, false).lit_integral, vec3(0.0f));
+  const TynMinMaxRay grazing = tyn_min_max_ray(0.0f, float(n), 0.22f, 0.78f, 0.0f, 100.0f, vec3(0.01f));
+  EXPECT_FALSE(tyn_min_max_ray_shadowed(access, n, tyn_min_max_highest_level(n), grazing));
+  EXPECT_GT(tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), grazing, false).lit_integral.x, 0.0f);
+  EXPECT_EQ(access.bad_reads, 0);
+}
+
 // A light-colour texture along the slice (coloured shafts): a smooth, channel-varying colour.
 struct ColoredAccess : SliceAccess {
   vec3 color(float u) const {

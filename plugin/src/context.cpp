@@ -434,9 +434,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   stats.profileUsed = profile;
   stats.passesRecorded.clear();
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
-  if (std::uint32_t fixedUp = 0, marched = 0; epipolar.takeCounts(slot, fixedUp, marched)) {
-    stats.fixedUpPixelFraction = static_cast<double>(fixedUp) / (double(extent.width) * extent.height);
-    stats.marchedSamples = marched;
+  if (EpipolarTechnique::Counts counts; epipolar.takeCounts(slot, counts)) {
+    stats.fixedUpPixelFraction = static_cast<double>(counts.fixedUp) / (double(extent.width) * extent.height);
+    stats.marchedSamples = counts.marched;
+    stats.shadowedSamples = counts.shadowed;
   }
 
   if (!setup.attenuates) {

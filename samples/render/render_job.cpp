@@ -278,6 +278,7 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["passMilliseconds"] = passes;
   if (result.stats.technique == Technique::Epipolar) {
     json["marchedSamples"] = result.stats.marchedSamples;
+    json["shadowedSamples"] = result.stats.shadowedSamples;
     json["fixedUpPixelFraction"] = result.stats.fixedUpPixelFraction;
   }
   json["totalMilliseconds"] = median(totals);

@@ -36,13 +36,15 @@ layout(set = 0, binding = 12, rg32f) uniform image2D min_max_tree;
 // for the stats) and the VkDispatchIndirectCommand that runs one march thread per entry of the
 // current round: marching a compact list keeps every lane busy, where a thread per (sample, slice)
 // would idle all but one in `initial step`. Round 1 marches [0, n1), round 2 (the samples that
-// refine_intensity.comp adds) [n1, n2); march_args.comp starts each round.
+// refine_intensity.comp adds) [n1, n2); march_args.comp starts each round. The header is 8 words
+// (kMarchHeaderWords in epipolar_technique.cpp).
 layout(set = 0, binding = 13, std430) buffer MarchList {
   uint march_groups[3];
   uint march_count;        // entries so far
   uint march_first;        // first entry of the current round
   uint march_round_end;    // entries when the current round started (the next round's first)
-  uint march_reserved[2];
+  uint march_shadowed;      // samples refine.comp found in shadow along their whole ray (not listed)
+  uint march_reserved;
   uint march_samples[];
 };
 

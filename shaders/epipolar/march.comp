@@ -21,8 +21,8 @@ vec2 g_origin_texels;
 vec2 g_step_texels;
 vec3 g_ray_origin;
 vec3 g_ray_direction;
-// Through a projective shadow matrix u is a linear-fractional function of the view distance,
-// u = (a0 + a1 t) / (p + q t); its inverse gives a spot light's lit section back in t.
+// u = (a0 + a1 t) / (p + q t) (slice_ray.glsl); its inverse gives a spot light's lit section
+// back in t.
 vec4 g_u_of_t;  // (a0, a1, p, q)
 
 #define TYN_SCATTERING_LUT_FETCH(texel) imageLoad(scattering_lut, texel).rgb
@@ -69,16 +69,16 @@ vec3 tyn_march_light_color(float u) {
 #define TYN_MIN_MAX_INTEGRATE(ray, a, b) \
   (TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL ? tyn_march_local_light(a, b) : tyn_min_max_directional_integral(ray, a, b))
 #include "epipolar/min_max_tree.h"
+#include "epipolar/slice_ray.glsl"
 
 layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
 
-// L_in along [0, s] of the view ray, marched along the slice's line (origin_direction from
-// slice_uv).
-vec3 tyn_march_along_slice(int slice, vec4 origin_direction, vec3 origin, vec3 dir, float s) {
-  float size = float(frame.counts.w);
+// L_in along [0, s] of the view ray sr (slice_ray.glsl), marched along the slice's line.
+vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, float s) {
   g_slice = slice;
-  g_origin_texels = vec2(origin_direction.x, origin_direction.y) * size;
-  g_step_texels = tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w));
+  g_origin_texels = sr.origin_texels;
+  g_step_texels = sr.step_texels;
+  g_u_of_t = sr.u_of_t;
   g_ray_origin = origin;
   g_ray_direction = dir;
   if (TYN_LIGHT_TYPE == TYN_LIGHT_SPOT) {
@@ -87,37 +87,18 @@ vec3 tyn_march_along_slice(int slice, vec4 origin_direction, vec3 origin, vec3 d
     g_cone = tyn_spot_cone_from_frame(g_light_ray, dir);
   }
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
-
-  // The part of the ray inside the map (a directional light's square slab, a spot light's
-  // frustum); outside it a directional light is unshadowed and a spot light does not reach.
-  TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
-  float t_in = 0.0;
-  float t_out = s;
-  bool inside = tyn_clip_to_shadow_map(r, t_in, t_out);
   vec3 unshadowed = vec3(0.0);
   if (directional) {
-    unshadowed = inside ? tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb) +
-                              tyn_transmittance_integral(t_out, s, frame.extinction.rgb)
-                        : tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
+    unshadowed = sr.inside ? tyn_transmittance_integral(0.0, sr.t_in, frame.extinction.rgb) +
+                                 tyn_transmittance_integral(sr.t_out, s, frame.extinction.rgb)
+                           : tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
   }
   vec3 lit = vec3(0.0);
-  if (inside) {
-    // Homogeneous texel coordinates of the ray, relative to the line's origin, projected on the
-    // step: u = (a0 + a1 t) / (p + q t).
-    float inv_step2 = 1.0 / dot(g_step_texels, g_step_texels);
-    vec2 rel0 = (vec2(r.h0.x, r.h0.y) * 0.5 + 0.5 * r.h0.w) * size - r.h0.w * g_origin_texels;
-    vec2 rel1 = (vec2(r.h1.x, r.h1.y) * 0.5 + 0.5 * r.h1.w) * size - r.h1.w * g_origin_texels;
-    g_u_of_t = vec4(dot(rel0, g_step_texels) * inv_step2, dot(rel1, g_step_texels) * inv_step2, r.h0.w, r.h1.w);
-    vec4 h_in = r.h0 + t_in * r.h1;
-    vec4 h_out = r.h0 + t_out * r.h1;
-    float u_in = (g_u_of_t.x + g_u_of_t.y * t_in) / h_in.w;
-    float u_out = (g_u_of_t.x + g_u_of_t.y * t_out) / h_out.w;
-    TynMinMaxRay ray = tyn_min_max_ray(u_in, u_out, h_in.z / h_in.w, h_out.z / h_out.w, t_in, t_out,
-                                       frame.extinction.rgb);
+  if (sr.inside) {
     int sample_count = int(epipolar.tree.x);
     TynMinMaxMarch march = epipolar.tree.z != 0u
-                               ? tyn_min_max_march_tree(sample_count, int(epipolar.tree.y), ray, TYN_MARCH_LIGHT_COLOR)
-                               : tyn_min_max_march_plain(sample_count, ray, TYN_MARCH_LIGHT_COLOR);
+                               ? tyn_min_max_march_tree(sample_count, int(epipolar.tree.y), sr.ray, TYN_MARCH_LIGHT_COLOR)
+                               : tyn_min_max_march_plain(sample_count, sr.ray, TYN_MARCH_LIGHT_COLOR);
     lit = march.lit_integral;
   }
   if (!directional) return lit;
@@ -138,9 +119,15 @@ void main() {
     vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
     vec4 origin_direction = epipolar.tree.x != 0u ? imageLoad(slice_uv, ivec2(id.y, 0))
                                                    : vec4(TYN_EPIPOLAR_INVALID_COORD);
-    in_scattering = tyn_slice_valid(origin_direction)
-                        ? tyn_march_along_slice(int(id.y), origin_direction, origin, dir, coordinates.z)
-                        : tyn_reference_in_scattering(origin, dir, coordinates.z);
+    // Slices without a line in the map and rays along the light: the Reference's texel walk.
+    bool along_slice = tyn_slice_valid(origin_direction);
+    TynSliceRay sr;
+    if (along_slice) {
+      sr = tyn_slice_ray(origin_direction, origin, dir, coordinates.z);
+      along_slice = !tyn_slice_ray_degenerate(sr);
+    }
+    in_scattering = along_slice ? tyn_march_along_slice(int(id.y), sr, origin, dir, coordinates.z)
+                                : tyn_reference_in_scattering(origin, dir, coordinates.z);
   }
   imageStore(epipolar_scattering, ivec2(id), vec4(in_scattering, 0.0));
 }

@@ -419,6 +419,53 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_cou
 }
 #endif
 
+#if defined(TYN_MIN_MAX_FETCH)
+// ---- Whole-ray shadow test (a light that reaches no visible point: DESIGN.md "Model only what
+// the scene requires") ----
+
+// True when the tree shows every point of the ray's part [u_begin, u_end] ∩ [0, L] in shadow, so
+// that both marches above would return a zero lit integral, to the bit; decided without
+// integrating and stopping at the first node that is not shadowed. Why exact: it walks the tree
+// march's own sequence of sections (same start level, same descent on a mixed node, same climb
+// after a decided one, same tyn_min_max_depth_at at the same section ends), and says true only
+// when every section it met was classified shadowed, which the tree march would then skip; the
+// plain march agrees with the tree march. A mixed level-0 node stops it (false) instead of
+// reading cells: conservative, and it needs no TYN_MIN_MAX_SAMPLE. An empty part is shadowed:
+// nothing is marched. What a caller adds outside the map (a directional light's unshadowed parts)
+// is the caller's to test. A single box bound over the whole part would not do: a tilted occluder's
+// depth range over a long part exceeds the occluder's thickness, where this walk descends.
+TYN_MIN_MAX_TEMPLATE
+TYN_FUNC bool tyn_min_max_ray_shadowed(TYN_MIN_MAX_ACCESS int sample_count, int top_level, TynMinMaxRay ray) {
+  float end = float(sample_count);
+  float a = clamp(ray.u_begin, 0.0f, end);
+  float b = clamp(ray.u_end, a, end);
+  int highest = min(top_level, tyn_min_max_highest_level(sample_count));
+  if (highest < 0) return b <= a;  // no tree to decide with
+
+  float u = a;
+  int k = min(int(floor(a)), sample_count - 1);
+  int level = highest;
+  int max_iterations = 3 * sample_count + highest + 2;
+  for (int i = 0; i < max_iterations && u < b; ++i) {
+    int span_log2 = level + 1;
+    int node = k >> span_log2;
+    int node_end = (node + 1) << span_log2;
+    float sb = min(b, float(node_end));
+    int c = tyn_min_max_classify(tyn_min_max_depth_at(ray, u), tyn_min_max_depth_at(ray, sb),
+                                 TYN_MIN_MAX_FETCH(level, node));
+    if (c == TYN_MIN_MAX_LIT || (c == TYN_MIN_MAX_MIXED && level == 0)) return false;
+    if (c == TYN_MIN_MAX_MIXED) {
+      --level;
+    } else {
+      u = sb;
+      k = node_end;
+      while (level < highest && (k & ((1 << (level + 2)) - 1)) == 0) ++level;
+    }
+  }
+  return u >= b;
+}
+#endif
+
 TYN_END
 
 #ifdef __cplusplus

@@ -402,6 +402,10 @@ struct Stats {
   /// Epipolar technique: samples ray-marched (initial step plus depth breaks), from the same
   /// earlier frame as `fixedUpPixelFraction`; 0 until one is known.
   std::uint64_t marchedSamples = 0;
+  /// Epipolar technique: samples the refinement would have ray-marched but found in shadow along
+  /// their whole view ray from the slice's min/max tree, so set to zero without marching (all of
+  /// them, and `marchedSamples` 0, when the light reaches no visible point); same frame.
+  std::uint64_t shadowedSamples = 0;
   /// Epipolar technique: fraction of the pixels the fix-up pass ray-marched, from the same
   /// earlier frame as `lastTimings`; negative until one is known.
   double fixedUpPixelFraction = -1.0;

@@ -1,6 +1,7 @@
 #include "epipolar/epipolar_technique.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "epipolar/scattering_lut.h"
@@ -13,12 +14,14 @@ namespace {
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr std::uint32_t kBindings = 17;
-// The march list's header: VkDispatchIndirectCommand, then the count (epipolar_common.glsl).
+// The march list's header: VkDispatchIndirectCommand, then the count, ..., the samples found in
+// shadow (epipolar_common.glsl's MarchList).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
 // Sample-texture sets of other sizes kept for a switch back (profiles differ in slices and
 // samples): High, Balanced and Performance each keep theirs while the others run.
 constexpr std::size_t kSpareTextureSets = 2;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
+constexpr VkDeviceSize kMarchShadowedOffset = 6 * sizeof(std::uint32_t);
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
 std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
@@ -106,7 +109,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   fixupReadback_.resize(slots);
   fixupPending_.assign(slots, false);
   for (MappedBuffer& buffer : fixupReadback_) {
-    if (Outcome o = createMappedBuffer(gpu, 2 * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
+    if (Outcome o = createMappedBuffer(gpu, 3 * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
       return o;
     }
   }
@@ -320,12 +323,13 @@ Outcome EpipolarTechnique::prepareScatteringTable(const Gpu& gpu, const FrameDes
   return {};
 }
 
-bool EpipolarTechnique::takeCounts(std::uint32_t slot, std::uint32_t& fixedUp, std::uint32_t& marched) {
+bool EpipolarTechnique::takeCounts(std::uint32_t slot, Counts& out) {
   if (slot >= fixupPending_.size() || !fixupPending_[slot]) return false;
   fixupPending_[slot] = false;
   const auto* counts = static_cast<const std::uint32_t*>(fixupReadback_[slot].mapped);
-  fixedUp = counts[0];
-  marched = counts[1];
+  out.fixedUp = counts[0];
+  out.marched = counts[1];
+  out.shadowed = counts[2];
   return true;
 }
 
@@ -433,21 +437,22 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
          [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
     pass("epipolar_coordinates", coordinatesPipeline_,
          [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
-    pass("epipolar_refine", refinePipeline_,
-         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-    if (buildTable) {
-      pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
-        gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
-      });
-    }
     // Each slice's line in the shadow map and its min/max tree: only for the lights that march
-    // along one line (directional, spot), the tree only when the march uses it.
+    // along one line (directional, spot), the tree only when the march uses it. Before the
+    // refinement, which leaves samples whose whole ray the tree shows in shadow out of the march.
     if (constants.tree.x != 0) {
       pass("epipolar_slice_uv", sliceUvPipeline_,
            [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
       if (constants.tree.z != 0) {
         pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
       }
+    }
+    pass("epipolar_refine", refinePipeline_,
+         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+    if (buildTable) {
+      pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
+        gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
+      });
     }
     // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
     // refinement adds.
@@ -506,9 +511,12 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                 VK_ACCESS_TRANSFER_READ_BIT);
   const VkBufferCopy fixupCount{0, 0, sizeof(std::uint32_t)};
-  const VkBufferCopy marchCount{kMarchCountOffset, sizeof(std::uint32_t), sizeof(std::uint32_t)};
+  const std::array<VkBufferCopy, 2> marchCounts{
+      VkBufferCopy{kMarchCountOffset, sizeof(std::uint32_t), sizeof(std::uint32_t)},
+      VkBufferCopy{kMarchShadowedOffset, 2 * sizeof(std::uint32_t), sizeof(std::uint32_t)}};
   gpu.vk.vkCmdCopyBuffer(cmd, fixupList_.buffer, fixupReadback_[slot].buffer, 1, &fixupCount);
-  gpu.vk.vkCmdCopyBuffer(cmd, textures_.marchList.buffer, fixupReadback_[slot].buffer, 1, &marchCount);
+  gpu.vk.vkCmdCopyBuffer(cmd, textures_.marchList.buffer, fixupReadback_[slot].buffer,
+                         static_cast<std::uint32_t>(marchCounts.size()), marchCounts.data());
   memoryBarrier(gpu, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                 VK_ACCESS_HOST_READ_BIT);
   fixupPending_[slot] = true;

@@ -53,9 +53,14 @@ class EpipolarTechnique {
   /// (re)build it (the medium changed since the last build).
   Outcome prepareScatteringTable(const Gpu& gpu, const FrameDesc& frame, bool& build);
 
-  /// Pixels the fix-up pass handled and samples ray-marched in the slot's previous frame (it has
-  /// completed when the slot comes round again); false when unknown.
-  bool takeCounts(std::uint32_t slot, std::uint32_t& fixedUp, std::uint32_t& marched);
+  struct Counts {
+    std::uint32_t fixedUp = 0;   // pixels the fix-up pass ray-marched
+    std::uint32_t marched = 0;   // samples ray-marched (both rounds)
+    std::uint32_t shadowed = 0;  // samples the refinement found in shadow along their whole ray
+  };
+  /// The counts of the slot's previous frame (it has completed when the slot comes round again);
+  /// false when unknown.
+  bool takeCounts(std::uint32_t slot, Counts& out);
 
  private:
   struct SampleTextures {

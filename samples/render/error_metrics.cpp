@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <sstream>
 
 namespace tyndall::samples {
@@ -34,9 +35,11 @@ ErrorStats compare(const host::ImageRgba32f& measured, auto reference, std::size
   stats.meanReference = sumReference / static_cast<double>(errors.size());
   const double scale = stats.meanReference > 0.0 ? stats.meanReference : 1.0;
   stats.relativeRmse = std::sqrt(sumSquared / static_cast<double>(errors.size())) / scale;
-  std::sort(errors.begin(), errors.end());
-  stats.relativeP99 = errors[static_cast<std::size_t>(0.99 * static_cast<double>(errors.size() - 1))] / scale;
-  stats.relativeMax = errors.back() / scale;
+  // The same order statistic a full sort would give, in linear time (a 4096×2160 image has 26M).
+  const auto p99 = errors.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(errors.size() - 1));
+  std::nth_element(errors.begin(), p99, errors.end());
+  stats.relativeP99 = *p99 / scale;
+  stats.relativeMax = *std::max_element(p99, errors.end()) / scale;
   return stats;
 }
 

@@ -187,7 +187,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarTree,
 
 const std::vector<std::string> kDirectionalPasses = {
     "epipolar_slice_end_points", "epipolar_coordinates", "epipolar_slice_uv", "epipolar_min_max_tree",
-    "epipolar_refine", "epipolar_march_args", "epipolar_march", "epipolar_refine_intensity",
+    "epipolar_refine", "epipolar_shadow_test_args", "epipolar_shadow_test", "epipolar_march_args", "epipolar_march",
+    "epipolar_refine_intensity",
     "epipolar_march_args_refined", "epipolar_march_refined", "epipolar_interpolate", "epipolar_unwarp",
     "epipolar_fixup_args", "epipolar_fixup", "composite", "aov_output"};
 
@@ -227,9 +228,9 @@ TEST(EpipolarPasses, FollowTheFrame) {
 
 // A light that reaches no visible point: a wall covering the screen, the light behind it shining
 // at the camera (directional, and a spot light whose cone holds the camera). Only the shadow map
-// knows, so the decision is the GPU's: the refinement finds every sample's whole ray in shadow on
-// its slice's tree, lists nothing, and the march's indirect dispatches run zero groups (the passes
-// stay recorded, empty, like the fix-up's). L_in is then exactly zero, as the Reference's is; T is
+// knows, so the decision is the GPU's: the shadow test finds every listed sample's whole ray in
+// shadow on its slice's tree, lists none for the march, and the march's indirect dispatches run
+// zero groups (the passes stay recorded, empty, like the fix-up's). L_in is then exactly zero, as the Reference's is; T is
 // exact. Without the wall the same frame marches.
 TEST(EpipolarPasses, LightBehindAWallMarchesNothing) {
   host::Scene scene = loadTestScene("analytic-mixed");

@@ -35,16 +35,18 @@ layout(set = 0, binding = 12, rg32f) uniform image2D min_max_tree;
 // The ray-marching samples the refinement chose, sample | slice << 16, with their count (read back
 // for the stats) and the VkDispatchIndirectCommand that runs one march thread per entry of the
 // current round: marching a compact list keeps every lane busy, where a thread per (sample, slice)
-// would idle all but one in `initial step`. Round 1 marches [0, n1), round 2 (the samples that
-// refine_intensity.comp adds) [n1, n2); march_args.comp starts each round. The header is 8 words
+// would idle all but one in `initial step`. The refinement lists [0, n0); with a tree,
+// shadow_test.comp lists those not in shadow again at [n0, n1) and round 1 marches them, else
+// round 1 marches [0, n0); round 2 (the samples refine_intensity.comp adds) marches what follows.
+// march_args.comp starts each of these ranges. The header is 8 words
 // (kMarchHeaderWords in epipolar_technique.cpp).
 layout(set = 0, binding = 13, std430) buffer MarchList {
   uint march_groups[3];
   uint march_count;        // entries so far
   uint march_first;        // first entry of the current round
   uint march_round_end;    // entries when the current round started (the next round's first)
-  uint march_shadowed;      // samples refine.comp found in shadow along their whole ray (not listed)
-  uint march_reserved;
+  uint march_shadowed;      // samples shadow_test.comp found in shadow along their whole ray
+  uint march_listed;       // the refinement's entries, which shadow_test.comp lists again (or not)
   uint march_samples[];
 };
 

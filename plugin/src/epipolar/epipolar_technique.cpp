@@ -15,13 +15,13 @@ constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr std::uint32_t kBindings = 17;
 // The march list's header: VkDispatchIndirectCommand, then the count, ..., the samples found in
-// shadow (epipolar_common.glsl's MarchList).
+// shadow and the entries the shadow test read (epipolar_common.glsl's MarchList).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
 // Sample-texture sets of other sizes kept for a switch back (profiles differ in slices and
 // samples): High, Balanced and Performance each keep theirs while the others run.
 constexpr std::size_t kSpareTextureSets = 2;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
-constexpr VkDeviceSize kMarchShadowedOffset = 6 * sizeof(std::uint32_t);
+constexpr VkDeviceSize kMarchShadowedOffset = 6 * sizeof(std::uint32_t);  // then the listed count
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
 std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
@@ -109,7 +109,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   fixupReadback_.resize(slots);
   fixupPending_.assign(slots, false);
   for (MappedBuffer& buffer : fixupReadback_) {
-    if (Outcome o = createMappedBuffer(gpu, 3 * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
+    if (Outcome o = createMappedBuffer(gpu, 4 * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
       return o;
     }
   }
@@ -122,13 +122,15 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
 
 Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (commonReady_) return {};
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 14> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 16> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
       {&sliceUvPipeline_, shaders::slice_uv_comp()},
       {&treePipeline_, shaders::min_max_tree_comp()},
       {&marchArgsPipeline_, shaders::march_args_comp()},
+      {&shadowTestArgsPipeline_, shaders::shadow_test_args_comp()},
+      {&shadowTestPipeline_, shaders::shadow_test_comp()},
       {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
       {&interpolatePipeline_, shaders::interpolate_comp()},
       {&unwarpPipeline_, shaders::unwarp_comp()},
@@ -207,7 +209,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
-                              marchArgsPipeline_, refineIntensityPipeline_, interpolatePipeline_, unwarpPipeline_,
+                              marchArgsPipeline_, shadowTestArgsPipeline_, shadowTestPipeline_, refineIntensityPipeline_,
+                              interpolatePipeline_, unwarpPipeline_,
                               fixupArgsPipeline_, scatteringLutPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
                               debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
@@ -285,7 +288,9 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   if (outcome) outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.sliceUv);
   if (outcome) outcome = createImage(gpu, VK_FORMAT_R32G32_SFLOAT, {treeWidth, treeRows}, kSampleUsage, fresh.tree);
   if (outcome) {
-    const VkDeviceSize entries = VkDeviceSize(settings.slices) * settings.samplesPerSlice;
+    // Every sample at most once per round, and the refinement's entries once more when the shadow
+    // test lists them again (epipolar_common.glsl's MarchList).
+    const VkDeviceSize entries = 2 * VkDeviceSize(settings.slices) * settings.samplesPerSlice;
     outcome = createDeviceBuffer(gpu, (kMarchHeaderWords + entries) * sizeof(std::uint32_t),
                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                                      VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
@@ -328,7 +333,7 @@ bool EpipolarTechnique::takeCounts(std::uint32_t slot, Counts& out) {
   fixupPending_[slot] = false;
   const auto* counts = static_cast<const std::uint32_t*>(fixupReadback_[slot].mapped);
   out.fixedUp = counts[0];
-  out.marched = counts[1];
+  out.marched = counts[1] - counts[3];  // the list's entries less those the shadow test listed again
   out.shadowed = counts[2];
   return true;
 }
@@ -408,6 +413,17 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     passes.emplace_back(name);
   };
 
+  // A dispatch sized on the GPU by the VkDispatchIndirectCommand at the start of `args`.
+  auto indirectPass = [&](const char* name, VkPipeline pipeline, VkBuffer args) {
+    timer.beginPass(gpu, cmd, name);
+    memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+                  readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    gpu.vk.vkCmdDispatchIndirect(cmd, args, 0);
+    timer.endPass(gpu, cmd);
+    passes.emplace_back(name);
+  };
+
   // The sample textures are rewritten every frame: earlier contents (and reads) are discarded.
   for (const OwnedImage* image : {&textures_.endPoints, &textures_.coordinates, &textures_.scattering,
                                   &textures_.interpolationSource, &textures_.sliceUv, &textures_.tree}) {
@@ -459,14 +475,13 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
     auto marchRound = [&](const char* argsName, const char* name) {
       pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-      timer.beginPass(gpu, cmd, name);
-      memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                    readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-      gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, march);
-      gpu.vk.vkCmdDispatchIndirect(cmd, textures_.marchList.buffer, 0);
-      timer.endPass(gpu, cmd);
-      passes.emplace_back(name);
+      indirectPass(name, march, textures_.marchList.buffer);
     };
+    // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
+    if (constants.tree.x != 0 && constants.tree.z != 0) {
+      pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+      indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer);
+    }
     marchRound("epipolar_march_args", "epipolar_march");
     if (constants.refinement.y < 1.0f) {
       pass("epipolar_refine_intensity", refineIntensityPipeline_,
@@ -484,13 +499,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     pass("epipolar_fixup_args", fixupArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
 
     // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
-    timer.beginPass(gpu, cmd, "epipolar_fixup");
-    memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
-                  readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipelines_[static_cast<std::size_t>(light)]);
-    gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
-    timer.endPass(gpu, cmd);
-    passes.emplace_back("epipolar_fixup");
+    indirectPass("epipolar_fixup", fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer);
   }
 
   if (bindings.debugView != DebugView::None) {
@@ -513,7 +522,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   const VkBufferCopy fixupCount{0, 0, sizeof(std::uint32_t)};
   const std::array<VkBufferCopy, 2> marchCounts{
       VkBufferCopy{kMarchCountOffset, sizeof(std::uint32_t), sizeof(std::uint32_t)},
-      VkBufferCopy{kMarchShadowedOffset, 2 * sizeof(std::uint32_t), sizeof(std::uint32_t)}};
+      VkBufferCopy{kMarchShadowedOffset, 2 * sizeof(std::uint32_t), 2 * sizeof(std::uint32_t)}};
   gpu.vk.vkCmdCopyBuffer(cmd, fixupList_.buffer, fixupReadback_[slot].buffer, 1, &fixupCount);
   gpu.vk.vkCmdCopyBuffer(cmd, textures_.marchList.buffer, fixupReadback_[slot].buffer,
                          static_cast<std::uint32_t>(marchCounts.size()), marchCounts.data());

@@ -56,7 +56,7 @@ class EpipolarTechnique {
   struct Counts {
     std::uint32_t fixedUp = 0;   // pixels the fix-up pass ray-marched
     std::uint32_t marched = 0;   // samples ray-marched (both rounds)
-    std::uint32_t shadowed = 0;  // samples the refinement found in shadow along their whole ray
+    std::uint32_t shadowed = 0;  // samples the shadow test found in shadow along their whole ray
   };
   /// The counts of the slot's previous frame (it has completed when the slot comes round again);
   /// false when unknown.
@@ -93,6 +93,8 @@ class EpipolarTechnique {
   VkPipeline sliceUvPipeline_ = VK_NULL_HANDLE;
   VkPipeline treePipeline_ = VK_NULL_HANDLE;
   VkPipeline marchArgsPipeline_ = VK_NULL_HANDLE;
+  VkPipeline shadowTestArgsPipeline_ = VK_NULL_HANDLE;
+  VkPipeline shadowTestPipeline_ = VK_NULL_HANDLE;
   VkPipeline refineIntensityPipeline_ = VK_NULL_HANDLE;
   // march.comp specialised: [light type][light-colour texture].
   std::array<std::array<VkPipeline, 2>, 3> marchPipelines_{};

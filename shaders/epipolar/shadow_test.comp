@@ -1,0 +1,106 @@
+#version 460
+// The whole-ray shadow test (DESIGN.md "Model only what the scene requires"): before the march,
+// each sample the refinement listed asks its slice's min/max tree whether its whole view ray is in
+// shadow; such a sample gets L_in = 0 here, exactly what the march would give it, and the others
+// are listed again, after the refinement's entries, for the march. When the light reaches no
+// visible point (behind a wall covering the screen) nothing is listed and the march's indirect
+// dispatch runs no work: the decision needs the shadow map, so it is made on the GPU. One thread
+// per listed sample, like the march (the same walk in the refinement's one-thread-per-slice loop
+// cost more refinement time than it saved march time on lavapipe). shadow_test_args.comp skips
+// the pass when the camera is lit.
+#extension GL_GOOGLE_include_directive : require
+#include "epipolar/epipolar_common.glsl"
+
+int g_slice;
+#define TYN_MIN_MAX_FETCH(level, index) \
+  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree.x), level) + (index), g_slice)).xy
+#include "epipolar/min_max_tree.h"
+#include "epipolar/slice_ray.glsl"
+
+layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
+
+// A ray the march walks like the Reference (slice_ray.glsl) covers less than a cell of the line:
+// the level-0 nodes over its cells bound every texel that walk meets (min_max_tree.h's footprint
+// guarantee), so it is dark when its depth exceeds them all. The walk computes its depths from
+// the same homogeneous ray per texel; the margin of 1e-6 (a few ulps of a depth in [0, 1]) keeps
+// its rounding from finding a lit sliver where this test found none.
+bool tyn_degenerate_ray_in_shadow(TynSliceRay sr) {
+  int sample_count = int(epipolar.tree.x);
+  float end = float(sample_count);
+  float a = clamp(min(sr.ray.u_begin, sr.ray.u_end), 0.0, end);
+  float b = clamp(max(sr.ray.u_begin, sr.ray.u_end), a, end);
+  int first = min(int(floor(a)), sample_count - 1);
+  int last = max(min(int(ceil(b)) - 1, sample_count - 1), first);
+  vec2 bounds = tyn_min_max_merge(TYN_MIN_MAX_FETCH(0, first >> 1), TYN_MIN_MAX_FETCH(0, last >> 1));
+  return bounds.y < 1.0 && min(sr.depths.x, sr.depths.y) > bounds.y + 1e-6;
+}
+
+// Every view ray starts at the camera, so where the camera itself is lit on this slice's tree (or
+// outside the map) no ray of the slice is in shadow along its whole length and the walk below is
+// skipped. Only a gate: the test it lets through is exact on its own.
+bool tyn_camera_in_shadow(vec4 origin_direction) {
+  vec4 h0 = frame.world_to_shadow[0] * vec4(frame.view_to_world[3].xyz, 1.0);
+  if (h0.w <= 0.0 || abs(h0.x) > h0.w || abs(h0.y) > h0.w) return false;
+  float size = float(frame.counts.w);
+  vec2 camera_texels = (vec2(h0.x, h0.y) / h0.w * 0.5 + 0.5) * size;
+  float u = tyn_min_max_u(vec2(origin_direction.x, origin_direction.y) * size,
+                          tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w)), camera_texels);
+  int sample_count = int(epipolar.tree.x);
+  vec2 bounds = TYN_MIN_MAX_FETCH(0, clamp(int(floor(u)), 0, sample_count - 1) >> 1);
+  return bounds.y < 1.0 && h0.z / h0.w > bounds.y;
+}
+
+// True when the march would give the sample zero: its ray is inside the map (a directional light
+// lights everything outside it) and the tree finds no lit point along it (min_max_tree.h's
+// tyn_min_max_ray_shadowed, on the march's own ray, slice_ray.glsl). Needs the slice's tree.
+bool tyn_sample_in_shadow(uvec2 id, vec4 origin_direction) {
+  vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(id));
+  if (coordinates.w < 0.5) return false;  // the march writes invalid samples itself
+  vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
+  TynSliceRay sr = tyn_slice_ray(origin_direction, frame.view_to_world[3].xyz, dir, coordinates.z);
+  if (frame.counts.x == TYN_LIGHT_DIRECTIONAL) {
+    if (!sr.inside || sr.t_in > 0.0 || sr.t_out < coordinates.z) return false;
+  } else if (!sr.inside) {
+    return true;  // a spot light's rays outside its frustum are not lit
+  }
+  if (tyn_slice_ray_degenerate(sr)) return tyn_degenerate_ray_in_shadow(sr);
+  // A ray whose far end may be lit is not dark: one node read saves the walk for most rays that
+  // leave the camera's shadow (a safe rejection; only "dark" needs the walk's proof).
+  int sample_count = int(epipolar.tree.x);
+  float u_end = clamp(sr.ray.u_end, 0.0, float(sample_count));
+  vec2 end_bounds = TYN_MIN_MAX_FETCH(0, min(int(floor(u_end)), sample_count - 1) >> 1);
+  if (end_bounds.y >= 1.0 || tyn_min_max_depth_at(sr.ray, u_end) <= end_bounds.y) return false;
+  return tyn_min_max_ray_shadowed(sample_count, int(epipolar.tree.y), sr.ray);
+}
+
+// The kept entries are appended per workgroup: one global atomic per group, not per entry.
+shared uint tyn_kept;
+shared uint tyn_base;
+
+void main() {
+  if (gl_LocalInvocationIndex == 0u) tyn_kept = 0u;
+  barrier();
+  // The refinement's entries are this round's [march_first, march_round_end) (march_args.comp).
+  uint entry = march_first + gl_GlobalInvocationID.x;
+  if (gl_GlobalInvocationID.x == 0u) march_listed = march_round_end;
+  bool listed = entry < march_round_end;
+  uint packed = listed ? march_samples[entry] : 0u;
+  bool kept = false;
+  if (listed) {
+    uvec2 id = uvec2(packed & 0xffffu, packed >> 16);  // x: sample, y: slice
+    g_slice = int(id.y);
+    vec4 origin_direction = imageLoad(slice_uv, ivec2(id.y, 0));
+    if (tyn_slice_valid(origin_direction) && tyn_camera_in_shadow(origin_direction) &&
+        tyn_sample_in_shadow(id, origin_direction)) {
+      imageStore(epipolar_scattering, ivec2(id), vec4(0.0));
+      atomicAdd(march_shadowed, 1u);
+    } else {
+      kept = true;
+    }
+  }
+  uint slot = kept ? atomicAdd(tyn_kept, 1u) : 0u;
+  barrier();
+  if (gl_LocalInvocationIndex == 0u) tyn_base = atomicAdd(march_count, tyn_kept);
+  barrier();
+  if (kept) march_samples[tyn_base + slot] = packed;
+}

@@ -6,10 +6,15 @@
 
 TYN_BEGIN
 
-// Workgroup sizes: one thread per slice, per fixed-up pixel, per ray-marching sample.
+// Workgroup sizes: one thread per slice, per fixed-up pixel, per ray-marching sample; the
+// refinement's threads of one slice.
 TYN_CONST uint TYN_EPIPOLAR_SLICE_GROUP = 64u;
+TYN_CONST uint TYN_EPIPOLAR_REFINE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_FIXUP_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;
+// Most samples per slice (EpipolarSettings::samplesPerSlice; the refinement's shared bit words and
+// the 16-bit sample index of the march list's entries).
+TYN_CONST uint TYN_EPIPOLAR_MAX_SAMPLES = 4096u;
 // Interpolation source of a sample past the slice's sample count.
 TYN_CONST uint TYN_EPIPOLAR_NO_SOURCE = 0xffffffffu;
 // Near the epipole the ray-marching step is at most 1/this of the distance to it (refine.comp).

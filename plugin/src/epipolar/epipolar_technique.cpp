@@ -31,7 +31,9 @@ std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + 
 Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   auto invalid = [](const char* message) { return failure(Status::InvalidArgument, message); };
   if (s.slices < 8 || s.slices > 4096) return invalid("epipolar.slices must be in 8..4096");
-  if (s.samplesPerSlice < 2 || s.samplesPerSlice > 4096) return invalid("epipolar.samplesPerSlice must be in 2..4096");
+  if (s.samplesPerSlice < 2 || s.samplesPerSlice > gpu::TYN_EPIPOLAR_MAX_SAMPLES) {
+    return invalid("epipolar.samplesPerSlice must be in 2..4096");
+  }
   if (!(s.epipoleDensity >= 1.0f && s.epipoleDensity <= 1000.0f)) {
     return invalid("epipolar.epipoleDensity must be in [1, 1000]");
   }
@@ -463,8 +465,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
         pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
       }
     }
-    pass("epipolar_refine", refinePipeline_,
-         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+    pass("epipolar_refine", refinePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
     if (buildTable) {
       pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
         gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);

@@ -3,6 +3,7 @@
 // with double matrices, line/rectangle clipping and perimeter coordinates written again here,
 // brute-force sampling of segments and rays.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -653,6 +654,124 @@ TEST(EpipolarGeometry, ImprovedPlacementSpacesShortSlicesOnePixelApart) {
   }
   EXPECT_EQ(tyn_slice_sample_count(vec4(TYN_EPIPOLAR_INVALID_COORD), fextent, maxSamples, 1.0f, true), 0u);
   EXPECT_EQ(tyn_slice_sample_count(vec4(TYN_EPIPOLAR_INVALID_COORD), fextent, maxSamples, 1.0f, false), 0u);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The surface around a pixel (depth-buffer planes)
+
+// A camera 1.7 above the ground y = 0 looking towards the horizon, as D32 depth values of the
+// ground and of walls facing the camera (fronto-parallel, at a view distance), built in double
+// from the projection and rounded to float as the depth buffer holds them.
+struct DepthScene {
+  dvec2 extent;
+  dmat4 projection;
+  dmat4 view;
+  vec4 toViewZ(dvec2 pixel) const {  // as tyn_epipolar_depth_slopes builds it
+    const dmat4 m = glm::inverse(projection);
+    const dvec2 ndc = (pixel + 0.5) / extent * 2.0 - 1.0;
+    return vec4(dvec4(m[2][2], m[0][2] * ndc.x + m[1][2] * ndc.y + m[3][2], m[2][3],
+                      m[0][3] * ndc.x + m[1][3] * ndc.y + m[3][3]));
+  }
+  double projectedDepth(double viewZ) const {
+    const dvec4 c = projection * dvec4(0.0, 0.0, viewZ, 1.0);
+    return std::clamp(c.z / c.w, 0.0, 1.0);
+  }
+  // Depth of the ground at a (fractional) pixel position, in double.
+  double ground(dvec2 pixel) const {
+    const dmat4 inverse = glm::inverse(projection * view);
+    const dvec2 ndc = (pixel + 0.5) / extent * 2.0 - 1.0;
+    const dvec4 a = inverse * dvec4(ndc, 0.5, 1.0);
+    const dvec3 eye = dvec3(glm::inverse(view)[3]);
+    const dvec3 dir = glm::normalize(dvec3(a) / a.w - eye);
+    const dvec3 hit = eye + dir * (-eye.y / dir.y);
+    const dvec4 c = projection * view * dvec4(hit, 1.0);
+    return c.z / c.w;
+  }
+  // Depth of a wall facing the camera at view distance `distance`.
+  float wall(double distance) const { return float(projectedDepth(-distance)); }
+};
+
+DepthScene depthScene(bool reversed, double farPlane) {
+  const dvec2 extent(640.0, 360.0);
+  return {extent, vulkanPerspective(glm::radians(60.0), extent.x / extent.y, 0.1, farPlane, reversed),
+          glm::lookAt(dvec3(0.0, 1.7, 0.0), dvec3(0.0, 1.5, -20.0), dvec3(0.0, 1.0, 0.0))};
+}
+
+// tyn_depth_plane_slope on seven depths in a row (three before the pixel, the pixel, three after),
+// all on screen unless `onScreen` says otherwise (pixels before, after the pixel).
+float planeSlope(const std::array<float, 7>& d, const vec4& toViewZ, float tolerance, glm::ivec2 onScreen = {3, 3}) {
+  const bvec3 before(onScreen.x >= 1, onScreen.x >= 2, onScreen.x >= 3);
+  const bvec3 after(onScreen.y >= 1, onScreen.y >= 2, onScreen.y >= 3);
+  return tyn_depth_plane_slope(d[0], d[1], d[2], d[3], d[4], d[5], d[6], before, after, toViewZ, vec2(0.0f, 1.0f),
+                               tolerance);
+}
+
+TEST(EpipolarGeometry, DepthPlaneSlopeFollowsPlanesAndStopsAtSilhouettes) {
+  const float tolerance = 0.05f;  // EpipolarSettings::bilateralDepthThreshold's default
+  const vec2 range(0.0f, 1.0f);   // [min, max] of the near and far planes' depths, any convention
+  for (const bool reversed : {false, true}) {
+    for (const double farPlane : {80.0, std::numeric_limits<double>::infinity()}) {
+      const DepthScene scene = depthScene(reversed, farPlane);
+      const std::string name = std::string(reversed ? "reverse-Z" : "standard") + (std::isinf(farPlane) ? ", infinite" : "");
+      // Ground at a grazing angle, from 7 to 43 units away (its ray length changes by up to 10%
+      // per pixel): the central difference, and the plane through a pixel gives the ground's depth
+      // between pixel centres, in view z to float precision.
+      for (const double row : {190.0, 200.0, 220.0, 260.0}) {
+        const dvec2 p(300.0, row);
+        const vec4 toZ = scene.toViewZ(p);
+        auto ground = [&](double dy) { return float(scene.ground(p + dvec2(0.0, dy))); };
+        const std::array<float, 7> column{ground(-3), ground(-2), ground(-1), ground(0), ground(1), ground(2), ground(3)};
+        const float slope = planeSlope(column, toZ, tolerance);
+        const double central = 0.5 * (double(ground(1)) - double(ground(-1)));
+        EXPECT_NE(slope, 0.0f) << name << " " << row;
+        EXPECT_NEAR(slope, central, 1e-6 * std::abs(central)) << name << " " << row;
+        for (const double offset : {-0.5, 0.5, 1.0}) {
+          const double exact = tyn_depth_view_z(float(scene.ground(p + dvec2(0.0, offset))), toZ);
+          const double onPlane =
+              tyn_depth_view_z(tyn_depth_on_plane(ground(0), vec2(0.0f, slope), vec2(0.0f, float(offset)), range), toZ);
+          EXPECT_NEAR(onPlane, exact, 2e-4 * std::abs(exact)) << name << " " << row << " " << offset;
+        }
+        // A silhouette below the pixel (a wall 3 units away): the ground's one-sided slope above
+        // the pixel, and the wall's own (flat) slope on the wall's side.
+        const float wall = scene.wall(3.0);
+        const double above = double(ground(0)) - double(ground(-1));
+        EXPECT_NEAR(planeSlope({ground(-3), ground(-2), ground(-1), ground(0), wall, wall, wall}, toZ, tolerance), above,
+                    1e-6 * std::abs(above))
+            << name << " " << row;
+        EXPECT_EQ(planeSlope({ground(-2), ground(-1), ground(0), wall, wall, wall, wall}, toZ, tolerance), 0.0f);
+        // A sliver one pixel wide (the wall at the pixel only): no plane.
+        EXPECT_EQ(planeSlope({ground(-3), ground(-2), ground(-1), wall, ground(1), ground(2), ground(3)}, toZ, tolerance),
+                  0.0f);
+        // Off the screen's edge: the side that is there with enough pixels, or nothing.
+        EXPECT_NEAR(planeSlope(column, toZ, tolerance, {3, 0}), above, 1e-6 * std::abs(above));
+        EXPECT_EQ(planeSlope(column, toZ, tolerance, {2, 0}), 0.0f);
+        EXPECT_NEAR(planeSlope(column, toZ, tolerance, {2, 1}), central, 1e-6 * std::abs(central));
+        EXPECT_EQ(planeSlope(column, toZ, tolerance, {1, 1}), 0.0f);
+      }
+      const vec4 toZ = scene.toViewZ(dvec2(300.0, 150.0));
+      // A crease (a ridge): the pixel is on two planes, neither continuing through it: no plane.
+      const float ridge = scene.wall(10.0);
+      const float step = ridge - scene.wall(10.3);
+      EXPECT_EQ(planeSlope({ridge - 3.0f * step, ridge - 2.0f * step, ridge - step, ridge, ridge - step,
+                            ridge - 2.0f * step, ridge - 3.0f * step},
+                           toZ, tolerance),
+                0.0f);
+      // Thin trunks before a far background, forest at 640x360 (distances halved to stay within
+      // the far plane): a pixel of one trunk after two others, the three nearly collinear in depth
+      // (their 1/z steps agree within 2%) but not with the trunk before them: no plane.
+      EXPECT_EQ(planeSlope({scene.wall(9.0), scene.wall(27.99), scene.wall(20.79), scene.wall(16.59), scene.wall(39.06),
+                            scene.wall(39.06), scene.wall(39.06)},
+                           toZ, tolerance),
+                0.0f);
+      // A pixel of sky beside a silhouette: the sky's flat plane, not the one through the silhouette.
+      const float sky = reversed ? 0.0f : 1.0f;
+      EXPECT_EQ(planeSlope({scene.wall(20.0), scene.wall(20.0), scene.wall(20.0), sky, sky, sky, sky}, toZ, tolerance),
+                0.0f);
+      // The plane is kept within the depth range: past the horizon it ends at the far plane.
+      EXPECT_EQ(tyn_depth_on_plane(0.5f, vec2(0.0f, 1.0f), vec2(0.0f, 2.0f), range), range.y);
+      EXPECT_EQ(tyn_depth_on_plane(0.5f, vec2(0.0f, -1.0f), vec2(0.0f, 2.0f), range), range.x);
+    }
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -73,4 +73,44 @@ float tyn_epipolar_shadow_texel(ivec2 texel) {
   return texelFetch(shadow_maps[0], texel, 0).r;
 }
 
+// The plane of the surface at a pixel of the depth buffer (epipolar_geometry.h, "The surface around
+// a pixel"): slopes per pixel along x and y. The tolerance is the bilateral threshold in both
+// passes that use it, so that a sample's depth (coordinates.comp) and the unwarp's expectation of
+// it (unwarp.comp) come from the same plane.
+vec2 tyn_epipolar_depth_range() {
+  return vec2(min(frame.depth_params.x, frame.depth_params.y), max(frame.depth_params.x, frame.depth_params.y));
+}
+
+vec2 tyn_epipolar_depth_slopes(ivec2 pixel, float depth) {
+  ivec2 last = ivec2(frame.extent.xy) - 1;
+  // View z from depth: the z and w rows of clip_to_view (column-major: [column][row]) at this
+  // pixel's x, y. The neighbours' x, y differ, but a perspective or orthographic projection's z
+  // and w rows do not depend on x, y (an oblique one's would, slightly, over three pixels).
+  vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, vec2(frame.extent.xy));
+  mat4 inverse = frame.clip_to_view;
+  vec4 to_view_z = vec4(inverse[2][2], inverse[0][2] * ndc.x + inverse[1][2] * ndc.y + inverse[3][2],
+                        inverse[2][3], inverse[0][3] * ndc.x + inverse[1][3] * ndc.y + inverse[3][3]);
+  vec2 range = tyn_epipolar_depth_range();
+  vec2 slopes;
+  for (int a = 0; a < 2; ++a) {
+    ivec2 axis = a == 0 ? ivec2(1, 0) : ivec2(0, 1);
+    float lo[3];  // one, two, three pixels before along the axis
+    float hi[3];  // and after
+    for (int i = 0; i < 3; ++i) {
+      lo[i] = texelFetch(depth_buffer, clamp(pixel - (i + 1) * axis, ivec2(0), last), 0).r;
+      hi[i] = texelFetch(depth_buffer, clamp(pixel + (i + 1) * axis, ivec2(0), last), 0).r;
+    }
+    bvec3 before = bvec3(pixel[a] >= 1, pixel[a] >= 2, pixel[a] >= 3);
+    bvec3 after = bvec3(pixel[a] + 1 <= last[a], pixel[a] + 2 <= last[a], pixel[a] + 3 <= last[a]);
+    slopes[a] = tyn_depth_plane_slope(lo[2], lo[1], lo[0], depth, hi[0], hi[1], hi[2], before, after, to_view_z,
+                                      range, epipolar.params.y);
+  }
+  return slopes;
+}
+
+// Depth-buffer value of that plane `offset` pixels from the pixel's centre.
+float tyn_epipolar_depth_at(float depth, vec2 slopes, vec2 offset) {
+  return tyn_depth_on_plane(depth, slopes, offset, tyn_epipolar_depth_range());
+}
+
 #endif

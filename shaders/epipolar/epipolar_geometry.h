@@ -322,6 +322,88 @@ TYN_FUNC float tyn_sample_coordinate(float fraction, uint sample_count, float ep
 }
 
 // ---------------------------------------------------------------------------------------------
+// The surface around a pixel, as a plane of the depth buffer (coordinates and unwarp passes)
+//
+// A plane's depth-buffer values are an affine function of the screen position, for any
+// projection and depth convention (a projective map takes planes to planes), so three
+// neighbouring pixel centres on one plane have a zero second difference. The passes use this to
+// know the surface between pixel centres, which a point-sampled depth buffer does not say:
+// - a sample's view ray must end on the surface at the sample's own position, not at the depth
+//   of the pixel it falls in (coordinates.comp);
+// - the unwarp's bilateral test asks whether a tap lies on the pixel's surface, so it compares the
+//   tap's view-ray length with the pixel's plane where the tap is, not with the pixel's own ray
+//   length (unwarp.comp).
+// Both matter on ground seen at a grazing angle, whose ray length changes by more than the
+// bilateral threshold per pixel (5–15% per pixel on the far ground of spot-lamp's view), and
+// where the ray ends inside a local light's beam, L_in changes with the ray's length
+// (integration-tests/extremes/test_spot_extremes.cpp has the measurements).
+// The slope along an axis is the central difference where the pixel, its two neighbours and the
+// next pixel on one side lie on one plane; else the one-sided difference towards the side where
+// the pixel and the next three pixels do (a silhouette: the surface goes on only on that side);
+// else 0, a point sample as without planes (a sliver, a crease where either side could be the
+// pixel's surface, the screen border). "On one plane": the plane through two of the pixels predicts the
+// third one's view-space z (its view-ray length, up to the direction's factor) to within the
+// tolerance of the z step between them. Relative to the step, not to the distance, because the
+// prediction's error grows with the slope, and thin occluders in front of a far background can
+// line up within a few percent of the distance while being three surfaces (their z steps still
+// differ by tens of percent). Float rounding of nearly constant depths fails the test too,
+// harmlessly (the slope is then about 0 anyway).
+
+// View-space z of a depth-buffer value d: (a·d + b) / (c·d + e) with to_view_z = (a, b, c, e), the
+// z and w rows of the inverse projection at the pixel's NDC x, y. Any depth convention.
+TYN_FUNC float tyn_depth_view_z(float d, vec4 to_view_z) {
+  return (to_view_z.x * d + to_view_z.y) / (to_view_z.z * d + to_view_z.w);
+}
+
+// Whether the third of three equally spaced pixels with depth-buffer values a, b, c lies on the
+// plane through the first two, whose depth there is 2b − a (see above). A plane that leaves
+// `range` (the depth buffer's [min, max]) by then is behind the far plane or the camera: not one
+// the third pixel can lie on (so a pixel of sky beside a silhouette, whose depth is the range's
+// end, is not taken for the silhouette's plane). The sky of an infinite far plane has no finite z:
+// never on a plane (the comparison below would be ∞ ≤ ∞).
+TYN_FUNC bool tyn_depth_on_plane_of(float a, float b, float c, vec4 to_view_z, vec2 range, float tolerance) {
+  float predicted = 2.0f * b - a;
+  if (!(predicted >= range.x && predicted <= range.y)) return false;
+  float z_b = tyn_depth_view_z(b, to_view_z);
+  float z_c = tyn_depth_view_z(c, to_view_z);
+  float z_predicted = tyn_depth_view_z(predicted, to_view_z);
+  float largest = max(max(abs(z_b), abs(z_c)), abs(z_predicted));
+  if (!(largest < TYN_EPIPOLAR_UNBOUNDED)) return false;
+  return abs(z_predicted - z_c) <= tolerance * abs(z_c - z_b);
+}
+
+// Slope of the depth buffer per pixel along one axis at a pixel of depth d, from the pixels one,
+// two and three before it along the axis (m1, m2, m3) and after it (p1, p2, p3); before.xyz and
+// after.xyz say whether m1..m3 and p1..p3 are on screen. See above for the choice; a plane needs
+// four pixels in a row on it, not three, because in a forest of thin occluders three surfaces line
+// up within the tolerance now and then (a pixel of one trunk between two others, whose z steps
+// agree within 2%), and two such coincidences in a row are far rarer.
+TYN_FUNC float tyn_depth_plane_slope(float m3, float m2, float m1, float d, float p1, float p2, float p3,
+                                     bvec3 before, bvec3 after, vec4 to_view_z, vec2 range, float tolerance) {
+  // Tested lazily, the central plane first: most pixels are inside a surface and need two tests.
+  bool m2_d = before.y && tyn_depth_on_plane_of(m2, m1, d, to_view_z, range, tolerance);
+  if (before.x && after.x && tyn_depth_on_plane_of(m1, d, p1, to_view_z, range, tolerance) &&
+      (m2_d || (after.y && tyn_depth_on_plane_of(p2, p1, d, to_view_z, range, tolerance)))) {
+    return 0.5f * (p1 - m1);
+  }
+  bool d_p2 = after.y && tyn_depth_on_plane_of(p2, p1, d, to_view_z, range, tolerance);
+  bool on_before = m2_d && before.z && tyn_depth_on_plane_of(m3, m2, m1, to_view_z, range, tolerance);
+  bool on_after = d_p2 && after.z && tyn_depth_on_plane_of(p3, p2, p1, to_view_z, range, tolerance);
+  if (on_before && !on_after) return d - m1;
+  if (on_after && !on_before) return p1 - d;
+  return 0.0f;
+}
+
+// Depth-buffer value of the plane through a pixel (depth, slopes per pixel along x and y) at
+// `offset` pixels from its centre, kept within `range` (the depth buffer's [min, max]: the near
+// and far planes' values in either order): a grazing plane extended past its horizon would
+// otherwise name a point behind the camera; clamped, it ends at the far plane (or the sky), as
+// the pixels beyond the horizon do.
+TYN_FUNC float tyn_depth_on_plane(float depth, vec2 slopes, vec2 offset, vec2 range) {
+  return clamp(depth + dot(slopes, offset), range.x, range.y);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Slice in shadow-map UV (yusov2013 "Slice origin and direction")
 //
 // Every view ray of a slice lies in the slice's epipolar plane, which contains the camera C and

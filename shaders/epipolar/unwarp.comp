@@ -1,14 +1,29 @@
 #version 460
 // Unwarp (engelhardt2010 §4.3, yusov2013): every pixel interpolates L_in from the two epipolar
 // slices it lies between and the two samples around it on each, bilinearly, keeping only taps
-// whose view-ray length is close to the pixel's (a bilateral filter on depth). A pixel left
-// with too little weight (a depth break no sample saw), or whose two slices disagree by more than
-// the slice-contrast threshold (a shaft or colour edge between them, narrower than their spacing),
-// is appended to the fix-up list. T is exact per pixel.
+// on the pixel's surface (a bilateral filter on depth, against the pixel's plane). On a slice
+// where only one of the two is, the pixel extrapolates along the slice from that sample and the
+// next one on its surface. A pixel left with too little weight (a depth break no sample saw), or
+// whose two slices disagree by more than the slice-contrast threshold (a shaft or colour edge
+// between them, narrower than their spacing), is appended to the fix-up list. T is exact per
+// pixel.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
 layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
+
+// Whether an epipolar sample lies on the pixel's surface: its view-ray length against that of
+// the pixel's plane (epipolar_geometry.h) at the sample's position, within the bilateral threshold
+// of the pixel's own ray length. Against the pixel's ray length alone, samples one pixel away on
+// ground seen at a grazing angle (5-15% per pixel on spot-lamp's far ground) were rejected: with
+// improved placement's one-pixel spacing the pixel then kept only the sample on its far side
+// (always the same side over many pixels) and took its value, where L_in changes by 2-5% per pixel.
+bool tyn_on_pixel_surface(vec4 coordinates, vec2 pixel_centre, float depth, vec2 slopes, float distance) {
+  if (coordinates.w < 0.5) return false;
+  vec2 offset = tyn_pixel_from_ndc(coordinates.xy, tyn_output_extent()) - pixel_centre;
+  float expected = tyn_view_distance(coordinates.xy, tyn_epipolar_depth_at(depth, slopes, offset));
+  return abs(coordinates.z - expected) <= epipolar.params.y * distance;
+}
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -23,6 +38,8 @@ void main() {
     return;
   }
 
+  vec2 pixel_centre = vec2(pixel) + 0.5;
+  vec2 slopes = tyn_epipolar_depth_slopes(ivec2(pixel), depth);
   uint slices = epipolar.counts.x;
   float density = epipolar.params.x;
   float slice_coordinate = tyn_slice_coordinate(epipolar.epipole, ndc, slices, extent);
@@ -47,16 +64,41 @@ void main() {
     float k0 = floor(k);
     float k1 = min(k0 + 1.0, float(count - 1u));
     float along = k - k0;
+    bool on_surface[2];
+    vec3 values[2];
     for (int t = 0; t < 2; ++t) {
       float index = t == 0 ? k0 : k1;
-      float tap_weight = slice_weight * (t == 0 ? 1.0 - along : along);
+      float tap_weight = t == 0 ? 1.0 - along : along;
       vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(index), int(slice)));
-      // Taps on another surface than the pixel's do not count: relative ray-length difference.
-      bool same_surface = abs(coordinates.z - distance) <= epipolar.params.y * distance;
-      if (coordinates.w < 0.5 || !same_surface || tap_weight <= 0.0) continue;
-      vec3 value = tap_weight * imageLoad(epipolar_scattering, ivec2(int(index), int(slice))).rgb;
-      slice_sum[s] += value;
-      slice_weight_sum[s] += tap_weight;
+      on_surface[t] = tap_weight > 0.0 && tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, distance);
+      values[t] = on_surface[t] ? imageLoad(epipolar_scattering, ivec2(int(index), int(slice))).rgb : vec3(0.0);
+    }
+    if (on_surface[0] && on_surface[1]) {
+      slice_sum[s] = slice_weight * mix(values[0], values[1], along);
+      slice_weight_sum[s] = slice_weight;
+    } else if (on_surface[0] || on_surface[1]) {
+      // A depth break between the two samples: the pixel has a sample of its surface on one side
+      // only, up to one sample spacing away. Its value alone would be off by L_in's gradient times
+      // that distance, always on the same side along a silhouette, which matters next to a spot
+      // light (L_in changing by several percent per pixel). The next sample beyond it, when on the
+      // same surface too, gives the gradient along the slice: linear extrapolation, as the
+      // interpolation on the other side of the pixel would have been linear. Its weight stays
+      // the one sample's, so a pixel far from it still goes to the fix-up.
+      int t = on_surface[0] ? 0 : 1;
+      float index = t == 0 ? k0 : k1;
+      float beyond = t == 0 ? k0 - 1.0 : k1 + 1.0;
+      float reach = abs(k - index);  // in sample spacings
+      vec3 value = values[t];
+      if (reach > 0.0 && beyond >= 0.0 && beyond < float(count)) {
+        vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(beyond), int(slice)));
+        if (tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, distance)) {
+          vec3 next = imageLoad(epipolar_scattering, ivec2(int(beyond), int(slice))).rgb;
+          value = max(value + (value - next) * reach, vec3(0.0));
+        }
+      }
+      float tap_weight = slice_weight * (t == 0 ? 1.0 - along : along);
+      slice_sum[s] = tap_weight * value;
+      slice_weight_sum[s] = tap_weight;
     }
   }
   vec3 sum = slice_sum[0] + slice_sum[1];

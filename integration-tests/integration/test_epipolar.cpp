@@ -286,6 +286,58 @@ TEST(EpipolarPasses, LightBehindAWallMarchesNothing) {
   expectNoValidationMessages();
 }
 
+// The debug views (tyndall-render --debug-view) against the stats of the same frames: the samples
+// view draws every ray-marched sample yellow and every sample the shadow test set to zero blue, at
+// the pixel it lies in (several samples may share a pixel), over a dimmed grey L_in (≤ 0.4); the
+// fix-up view draws exactly the fixed-up pixels red. pillars has both kinds of samples; behind a
+// wall every listed sample is in shadow, so nothing is yellow.
+TEST(EpipolarDebugViews, DrawTheSamplesAndTheFixedUpPixels) {
+  auto count = [](const host::ImageRgba32f& image, glm::vec3 colour) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < image.pixels.size(); i += 4) {
+      const glm::vec3 c(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]);
+      if (glm::all(glm::lessThan(glm::abs(c - colour), glm::vec3(0.01f)))) ++n;
+    }
+    return n;
+  };
+  const glm::vec3 yellow(1.0f, 0.85f, 0.0f);
+  const glm::vec3 blue(0.1f, 0.45f, 1.0f);
+  const glm::vec3 red(1.0f, 0.1f, 0.05f);
+
+  host::Scene wall = loadTestScene("analytic-mixed");
+  wall.camera.position = {0.0, 2.0, 10.0};
+  wall.camera.target = {0.0, 2.0, 0.0};
+  wall.light.direction = glm::normalize(glm::dvec3(0.1, -0.2, 1.0));
+  wall.objects = {boxObject({0.0, 2.0, 0.0}, {30.0, 30.0, 0.5})};
+  for (const auto& [name, scene] : {std::pair{"pillars", loadTestScene("pillars")}, std::pair{"wall", wall}}) {
+    SCOPED_TRACE(name);
+    samples::RenderOptions o = options(Technique::Epipolar);
+    o.frames = 3;  // the counts of a frame are read when its slot comes round again
+    o.debugView = DebugView::EpipolarSamples;
+    const samples::RenderResult drawn = renderWithSharedContext(scene, o);
+    const std::size_t marched = count(drawn.debugView, yellow);
+    const std::size_t dark = count(drawn.debugView, blue);
+    std::printf("[ debug view %s ] %zu yellow, %zu blue pixels; %llu samples marched, %llu in shadow\n", name,
+                marched, dark, static_cast<unsigned long long>(drawn.stats.marchedSamples),
+                static_cast<unsigned long long>(drawn.stats.shadowedSamples));
+    EXPECT_LE(marched, drawn.stats.marchedSamples);
+    EXPECT_LE(dark, drawn.stats.shadowedSamples);
+    EXPECT_GT(dark, 0u);
+    if (drawn.stats.marchedSamples == 0) {
+      EXPECT_EQ(marched, 0u);
+    } else {
+      EXPECT_GT(marched, drawn.stats.marchedSamples / 4);
+    }
+
+    o.debugView = DebugView::FixedUpPixels;
+    const samples::RenderResult fixups = renderWithSharedContext(scene, o);
+    const double pixels = double(kWidth) * kHeight;
+    EXPECT_EQ(double(count(fixups.debugView, red)), std::round(fixups.stats.fixedUpPixelFraction * pixels));
+    EXPECT_GT(count(fixups.debugView, red), 0u);
+  }
+  expectNoValidationMessages();
+}
+
 // The spot light's semi-analytic table is built only when a spot light needs it and only when the
 // medium changed: in the first frame of a context, not in the next ones; never for a directional
 // light.

@@ -1,6 +1,7 @@
 #version 460
 // Debug view DebugView::EpipolarSamples: every ray-marched epipolar sample (an interpolation
-// source of itself), yellow, at the pixel it lies in.
+// source of itself), yellow, at the pixel it lies in; blue where the shadow test found its whole
+// ray in shadow and set it to zero without marching (shadow_test.comp marks those with alpha 1).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
@@ -14,5 +15,6 @@ void main() {
   vec2 extent = tyn_output_extent();
   vec2 ndc = imageLoad(epipolar_coordinates, ivec2(id)).xy;
   ivec2 pixel = ivec2(clamp(floor(tyn_pixel_from_ndc(ndc, extent)), vec2(0.0), extent - 1.0));
-  imageStore(debug_image, pixel, vec4(1.0, 0.85, 0.0, 1.0));
+  bool in_shadow = imageLoad(epipolar_scattering, ivec2(id)).a > 0.5;
+  imageStore(debug_image, pixel, in_shadow ? vec4(0.1, 0.45, 1.0, 1.0) : vec4(1.0, 0.85, 0.0, 1.0));
 }

@@ -92,7 +92,8 @@ void main() {
     vec4 origin_direction = imageLoad(slice_uv, ivec2(id.y, 0));
     if (tyn_slice_valid(origin_direction) && tyn_camera_in_shadow(origin_direction) &&
         tyn_sample_in_shadow(id, origin_direction)) {
-      imageStore(epipolar_scattering, ivec2(id), vec4(0.0));
+      // Alpha 1 marks it for the samples debug view (debug_samples.comp); L_in readers take .rgb.
+      imageStore(epipolar_scattering, ivec2(id), vec4(0.0, 0.0, 0.0, 1.0));
       atomicAdd(march_shadowed, 1u);
     } else {
       kept = true;

@@ -123,7 +123,9 @@ struct EpipolarSettings {
 /// --debug-view). Drawn over a dimmed grey L_in (luminance / (1 + luminance), times 0.4).
 enum class DebugView : std::uint32_t {
   None,
-  EpipolarSamples,  ///< the ray-marched epipolar samples, yellow, at the pixel each lies in
+  /// The ray-marched epipolar samples at the pixel each lies in: yellow, or blue where the shadow
+  /// test found the whole ray in shadow and set it to zero without marching.
+  EpipolarSamples,
   FixedUpPixels,    ///< the pixels the epipolar fix-up pass ray-marched, red
 };
 

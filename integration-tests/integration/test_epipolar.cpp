@@ -226,6 +226,18 @@ TEST(EpipolarPasses, FollowTheFrame) {
   expectNoValidationMessages();
 }
 
+// A wall covering the screen, a directional light behind it shining at the camera. The view
+// frustum at the wall is ±10.3 × ±5.8; the wall's shadow, shifted by at most 2 units over the 10 to
+// the camera, covers every view ray (and keeps clear texels far from them).
+host::Scene behindAWall() {
+  host::Scene scene = loadTestScene("analytic-mixed");
+  scene.camera.position = {0.0, 2.0, 10.0};
+  scene.camera.target = {0.0, 2.0, 0.0};
+  scene.light.direction = glm::normalize(glm::dvec3(0.1, -0.2, 1.0));
+  scene.objects = {boxObject({0.0, 2.0, 0.0}, {30.0, 30.0, 0.5})};
+  return scene;
+}
+
 // A light that reaches no visible point: a wall covering the screen, the light behind it shining
 // at the camera (directional, and a spot light whose cone holds the camera). Only the shadow map
 // knows, so the decision is the GPU's: the shadow test finds every listed sample's whole ray in
@@ -233,13 +245,7 @@ TEST(EpipolarPasses, FollowTheFrame) {
 // zero groups (the passes stay recorded, empty, like the fix-up's). L_in is then exactly zero, as the Reference's is; T is
 // exact. Without the wall the same frame marches.
 TEST(EpipolarPasses, LightBehindAWallMarchesNothing) {
-  host::Scene scene = loadTestScene("analytic-mixed");
-  scene.camera.position = {0.0, 2.0, 10.0};
-  scene.camera.target = {0.0, 2.0, 0.0};
-  scene.light.direction = glm::normalize(glm::dvec3(0.1, -0.2, 1.0));
-  // The view frustum at the wall is ±10.3 × ±5.8; the wall's shadow, shifted by at most 2 units
-  // over the 10 to the camera, covers every view ray (and keeps clear texels far from them).
-  scene.objects = {boxObject({0.0, 2.0, 0.0}, {30.0, 30.0, 0.5})};
+  host::Scene scene = behindAWall();
   samples::RenderOptions o = options(Technique::Epipolar);
   o.frames = 3;  // the counts of a frame are read when its slot comes round again
   // A spot light behind the wall too, the camera inside its cone.
@@ -304,12 +310,7 @@ TEST(EpipolarDebugViews, DrawTheSamplesAndTheFixedUpPixels) {
   const glm::vec3 blue(0.1f, 0.45f, 1.0f);
   const glm::vec3 red(1.0f, 0.1f, 0.05f);
 
-  host::Scene wall = loadTestScene("analytic-mixed");
-  wall.camera.position = {0.0, 2.0, 10.0};
-  wall.camera.target = {0.0, 2.0, 0.0};
-  wall.light.direction = glm::normalize(glm::dvec3(0.1, -0.2, 1.0));
-  wall.objects = {boxObject({0.0, 2.0, 0.0}, {30.0, 30.0, 0.5})};
-  for (const auto& [name, scene] : {std::pair{"pillars", loadTestScene("pillars")}, std::pair{"wall", wall}}) {
+  for (const auto& [name, scene] : {std::pair{"pillars", loadTestScene("pillars")}, std::pair{"wall", behindAWall()}}) {
     SCOPED_TRACE(name);
     samples::RenderOptions o = options(Technique::Epipolar);
     o.frames = 3;  // the counts of a frame are read when its slot comes round again

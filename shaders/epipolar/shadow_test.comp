@@ -35,21 +35,6 @@ bool tyn_degenerate_ray_in_shadow(TynSliceRay sr) {
   return bounds.y < 1.0 && min(sr.depths.x, sr.depths.y) > bounds.y + 1e-6;
 }
 
-// Every view ray starts at the camera, so where the camera itself is lit on this slice's tree (or
-// outside the map) no ray of the slice is in shadow along its whole length and the walk below is
-// skipped. Only a gate: the test it lets through is exact on its own.
-bool tyn_camera_in_shadow(vec4 origin_direction) {
-  vec4 h0 = frame.world_to_shadow[0] * vec4(frame.view_to_world[3].xyz, 1.0);
-  if (h0.w <= 0.0 || abs(h0.x) > h0.w || abs(h0.y) > h0.w) return false;
-  float size = float(frame.counts.w);
-  vec2 camera_texels = (vec2(h0.x, h0.y) / h0.w * 0.5 + 0.5) * size;
-  float u = tyn_min_max_u(vec2(origin_direction.x, origin_direction.y) * size,
-                          tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w)), camera_texels);
-  int sample_count = int(epipolar.tree.x);
-  vec2 bounds = TYN_MIN_MAX_FETCH(0, clamp(int(floor(u)), 0, sample_count - 1) >> 1);
-  return bounds.y < 1.0 && h0.z / h0.w > bounds.y;
-}
-
 // True when the march would give the sample zero: its ray is inside the map (a directional light
 // lights everything outside it) and the tree finds no lit point along it (min_max_tree.h's
 // tyn_min_max_ray_shadowed, on the march's own ray, slice_ray.glsl). Needs the slice's tree.
@@ -90,8 +75,7 @@ void main() {
     uvec2 id = uvec2(packed & 0xffffu, packed >> 16);  // x: sample, y: slice
     g_slice = int(id.y);
     vec4 origin_direction = imageLoad(slice_uv, ivec2(id.y, 0));
-    if (tyn_slice_valid(origin_direction) && tyn_camera_in_shadow(origin_direction) &&
-        tyn_sample_in_shadow(id, origin_direction)) {
+    if (tyn_slice_valid(origin_direction) && tyn_sample_in_shadow(id, origin_direction)) {
       // Alpha 1 marks it for the samples debug view (debug_samples.comp); L_in readers take .rgb.
       imageStore(epipolar_scattering, ivec2(id), vec4(0.0, 0.0, 0.0, 1.0));
       atomicAdd(march_shadowed, 1u);

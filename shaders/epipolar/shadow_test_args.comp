@@ -12,7 +12,7 @@
 layout(local_size_x = 1) in;
 
 // The camera in shadow on the 2×2 texel block around it (the footprint of a 1D cell there); a
-// camera outside the map counts as lit, as in shadow_test.comp's per-slice gate.
+// camera outside the map counts as lit.
 bool tyn_camera_in_shadow_map() {
   vec4 h0 = frame.world_to_shadow[0] * vec4(frame.view_to_world[3].xyz, 1.0);
   if (h0.w <= 0.0 || abs(h0.x) > h0.w || abs(h0.y) > h0.w) return false;

@@ -39,10 +39,14 @@ TEST(FramesInFlight, EveryFrameIsTimedAndValidationIsClean) {
     for (std::size_t i = 0; i < result.timings.size(); ++i) {
       const FrameTimings& t = result.timings[i];
       EXPECT_EQ(t.frameIndex, i);
-      ASSERT_EQ(t.passes.size(), 3u);
+      // The render copies the AOVs in its last frame only (the frames before run as an engine's).
+      const bool last = i + 1 == result.timings.size();
+      ASSERT_EQ(t.passes.size(), last ? 3u : 2u);
       EXPECT_EQ(t.passes[0].name, "reference_scattering");
       EXPECT_EQ(t.passes[1].name, "composite");
-      EXPECT_EQ(t.passes[2].name, "aov_output");
+      if (last) {
+        EXPECT_EQ(t.passes[2].name, "aov_output");
+      }
       EXPECT_GT(t.passes[0].milliseconds, 0.0);
       EXPECT_GE(t.totalMilliseconds, t.passes[0].milliseconds);
     }

@@ -458,7 +458,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   doc += "on **" + context.device + "**. Every configuration (a technique and its parameters) ran on every scene at "
          "every size after the Reference and the full-screen floor pass (one pass that reads depth and colour and "
          "writes colour, `samples/bench/shaders/floor.frag`), in the same run. Times are the median GPU time "
-         "(Tyndall's timestamps, first pass start to last pass end) of " + std::to_string(context.frames) +
+         "(Tyndall's timestamps, first pass start to last pass end; frames timed without copying L_in to the AOV, which one more frame does for the errors) of " + std::to_string(context.frames) +
          " frames after " + std::to_string(context.warmUpFrames) + " warm-up frames; speedup is the Reference's "
          "time over the configuration's, `× floor` its time over the floor pass's. Errors are L_in against the "
          "Reference's (relative RMSE = RMSE / mean |reference|; p99 and max of |error| / mean |reference|). "

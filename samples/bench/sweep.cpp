@@ -268,6 +268,8 @@ class Sweep {
     std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device_, scene, settings, error);
     if (!renderer) return false;
     renderer->addPostProcess(effect);
+    // Timed frames run as an engine runs them, without copying L_in out; one more frame copies it.
+    if (tyndall != nullptr) tyndall->setAovOutputs(false);
     const std::uint32_t frames = options_.warmUpFrames + options_.frames;
     for (std::uint32_t frame = 0; frame < frames; ++frame) {
       if (!renderer->renderFrame(error)) {
@@ -304,6 +306,12 @@ class Sweep {
     }
     if (!checkValidation(error)) return false;
     if (!readScattering) return true;
+    if (tyndall != nullptr) tyndall->setAovOutputs(true);
+    if (!renderer->renderFrame(error)) {
+      renderer->waitIdle();
+      return false;
+    }
+    renderer->waitIdle();
     if (!renderer->readAovScattering(out.scattering, error)) return false;
 
     host::ImageRgba32f previous = out.scattering;

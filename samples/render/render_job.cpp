@@ -200,6 +200,8 @@ bool renderSceneWith(host::Device& device, const host::Scene& scene, const Rende
   using Clock = std::chrono::steady_clock;
   Clock::time_point start = Clock::now();
   for (std::uint32_t frame = 0; frame < options.frames; ++frame) {
+    // The AOVs are read from the last frame only; the frames before it are timed without the copy.
+    if (effect) effect->setAovOutputs(frame + 1 == options.frames);
     if (!renderer->renderFrame(error)) {
       renderer->waitIdle();  // the context and the renderer are destroyed next
       return false;

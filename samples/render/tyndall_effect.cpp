@@ -138,7 +138,10 @@ bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& i
   frame.autoBudgetMilliseconds = autoBudget_;
   frame.technique = technique_;
   if (epipolar_) frame.epipolar = &*epipolar_;
-  if (debugView_ != DebugView::None) {
+  if (!aovOutputs_) {
+    frame.scatteringOutput = {};
+    frame.transmittanceOutput = {};
+  } else if (debugView_ != DebugView::None) {
     frame.debugView = debugView_;
     frame.debugOutput = toImageRef(inputs.aovDebug);
   }

@@ -33,6 +33,10 @@ class TyndallEffect final : public host::PostProcessEffect {
   void setDebugView(DebugView view) { debugView_ = view; }
   /// Parameters of the prefiltered technique instead of the profile's (empty: the profile's).
   void setPrefilteredSettings(const std::optional<PrefilteredSettings>& settings) { prefiltered_ = settings; }
+  /// Whether the frames recorded next copy L_in, T and the debug view into the host's AOV images
+  /// (default true). Timed frames leave them off: an engine does not read AOVs every frame, and the
+  /// copy (aov_output) is a blit, slow where the graphics units are few.
+  void setAovOutputs(bool on) { aovOutputs_ = on; }
   Context& context() { return *context_; }
   /// Messages the context reported through its callback.
   const std::vector<std::string>& messages() const { return messages_; }
@@ -47,6 +51,7 @@ class TyndallEffect final : public host::PostProcessEffect {
   std::optional<EpipolarSettings> epipolar_;
   DebugView debugView_ = DebugView::None;
   std::optional<PrefilteredSettings> prefiltered_;
+  bool aovOutputs_ = true;
   std::vector<std::string> messages_;
 };
 

@@ -6,11 +6,14 @@
 
 TYN_BEGIN
 
-// Workgroup sizes: one thread per slice, per fixed-up pixel, per ray-marching sample; the
-// refinement's threads of one slice.
+// Workgroup sizes: one thread per slice, per fixed-up pixel of the debug view, per ray-marching
+// sample; the refinement's threads of one slice. The fix-up itself runs one workgroup of
+// TYN_SPLIT_MARCH_PARTS threads per pixel, at most TYN_EPIPOLAR_FIXUP_MAX_GROUPS groups (the
+// smallest maxComputeWorkGroupCount[0] Vulkan allows).
 TYN_CONST uint TYN_EPIPOLAR_SLICE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_REFINE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_FIXUP_GROUP = 64u;
+TYN_CONST uint TYN_EPIPOLAR_FIXUP_MAX_GROUPS = 65535u;
 TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;
 // Most samples per slice (EpipolarSettings::samplesPerSlice; the refinement's shared bit words and
 // the 16-bit sample index of the march list's entries).

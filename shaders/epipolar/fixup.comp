@@ -1,19 +1,22 @@
 #version 460
-// Fix-up: pixels the unwarp could not interpolate are ray-marched one by one with the
-// Reference's walk (the brute-force path and the fix-up run the same code).
+// Fix-up: pixels the unwarp could not interpolate are ray-marched with the Reference's walk (the
+// brute-force path and the fix-up run the same code), one workgroup per pixel sharing its ray
+// (reference/split_march.glsl): there are few such pixels, and one thread each would leave a GPU
+// idle while a few long walks finish. fixup_args.comp caps the groups at the dispatch limit, so a
+// group takes every gl_NumWorkGroups.x-th pixel of the list.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
-#include "reference/reference_march.glsl"
+#include "reference/split_march.glsl"
 
-layout(local_size_x = TYN_EPIPOLAR_FIXUP_GROUP) in;
+layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 
 void main() {
-  uint index = gl_GlobalInvocationID.x;
-  if (index >= fixup_count) return;
-  uint packed = fixup_pixels[index];
-  uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);
-  float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-  TynViewRay ray = tyn_view_ray(pixel, depth);
-  vec3 in_scattering = tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance);
-  imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  for (uint index = gl_WorkGroupID.x; index < fixup_count; index += gl_NumWorkGroups.x) {
+    uint packed = fixup_pixels[index];
+    uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);
+    float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
+    TynViewRay ray = tyn_view_ray(pixel, depth);
+    vec3 in_scattering = tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
+    if (gl_LocalInvocationID.x == 0u) imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  }
 }

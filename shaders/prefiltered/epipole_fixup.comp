@@ -6,15 +6,17 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "prefiltered/prefiltered_common.glsl"
-#include "reference/reference_march.glsl"
+#include "reference/split_march.glsl"
 
-layout(local_size_x = TYN_PF_TEXEL_GROUP, local_size_y = TYN_PF_TEXEL_GROUP) in;
+// One workgroup per pixel of the block sharing its ray (reference/split_march.glsl): the block is
+// a few thousand pixels, too few to keep a GPU busy with one long walk each.
+layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 
 void main() {
-  ivec2 pixel = fixup_args.rect.xy + ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = fixup_args.rect.xy + ivec2(gl_WorkGroupID.xy);
   if (any(greaterThanEqual(pixel, fixup_args.rect.zw))) return;
   float depth = texelFetch(depth_buffer, pixel, 0).r;
   TynViewRay ray = tyn_view_ray(uvec2(pixel), depth);
-  vec3 in_scattering = tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance);
-  imageStore(out_scattering, pixel, vec4(in_scattering, 0.0));
+  vec3 in_scattering = tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
+  if (gl_LocalInvocationID.x == 0u) imageStore(out_scattering, pixel, vec4(in_scattering, 0.0));
 }

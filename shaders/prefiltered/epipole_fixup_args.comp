@@ -22,8 +22,8 @@ void main() {
     ivec2 hi = lo + ivec2(pf.fixup.x);
     rect = ivec4(max(lo, ivec2(0)), min(hi, ivec2(frame.extent.xy)));
   }
+  // One workgroup per pixel (epipole_fixup.comp).
   ivec2 size = max(rect.zw - rect.xy, ivec2(0));
-  uvec2 groups = (uvec2(size) + TYN_PF_TEXEL_GROUP - 1u) / TYN_PF_TEXEL_GROUP;
   fixup_args.rect = rect;
-  fixup_args.groups = uvec4(size.x > 0 && size.y > 0 ? groups : uvec2(0u), 1u, 0u);
+  fixup_args.groups = uvec4(size.x > 0 && size.y > 0 ? uvec2(size) : uvec2(0u), 1u, 0u);
 }

@@ -110,19 +110,32 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   return sum;
 }
 
-// L_in along [0, s] of the view ray (DESIGN.md "Radiometry").
-vec3 tyn_reference_in_scattering(vec3 origin, vec3 dir, float s) {
+// Ends of part `part` of `parts` equal lengths of [t0, t1]; the first part begins exactly at t0 and
+// the last ends exactly at t1, so that one part is the whole stretch.
+float tyn_part_begin(float t0, float t1, uint part, uint parts) {
+  return part == 0u ? t0 : t0 + (t1 - t0) * (float(part) / float(parts));
+}
+float tyn_part_end(float t0, float t1, uint part, uint parts) {
+  return part + 1u == parts ? t1 : t0 + (t1 - t0) * (float(part + 1u) / float(parts));
+}
+
+// Part `part` of `parts` of L_in along [0, s] of the view ray (DESIGN.md "Radiometry"): the
+// stretch of the ray inside each shadow map is cut into `parts` equal lengths and this walks one of
+// them, so that several threads can share one ray (split_march.glsl); the parts sum to the whole.
+// A directional light's stretches outside the map (lit, closed form) belong to part 0.
+vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part, uint parts) {
   if (TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL) {
     // Outside the map's square there is no occluder information: lit.
     float t_in = 0.0;
     float t_out = s;
-    vec3 lit;
+    vec3 lit = vec3(0.0);
     TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
     if (tyn_clip_to_shadow_map(r, t_in, t_out)) {
-      lit = tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb) +
-            tyn_walk_shadow_map(0u, origin, dir, t_in, t_out, true) +
-            tyn_transmittance_integral(t_out, s, frame.extinction.rgb);
-    } else {
+      if (part == 0u) lit = tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb);
+      lit += tyn_walk_shadow_map(0u, origin, dir, tyn_part_begin(t_in, t_out, part, parts),
+                                 tyn_part_end(t_in, t_out, part, parts), true);
+      if (part == 0u) lit += tyn_transmittance_integral(t_out, s, frame.extinction.rgb);
+    } else if (part == 0u) {
       lit = tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
     }
     float cos_theta = dot(dir, -frame.light_direction.xyz);
@@ -136,10 +149,16 @@ vec3 tyn_reference_in_scattering(vec3 origin, vec3 dir, float s) {
     float t_in = 0.0;
     float t_out = s;
     if (tyn_clip_to_shadow_map(tyn_shadow_ray(map, origin, dir), t_in, t_out)) {
-      sum += tyn_walk_shadow_map(map, origin, dir, t_in, t_out, false);
+      sum += tyn_walk_shadow_map(map, origin, dir, tyn_part_begin(t_in, t_out, part, parts),
+                                 tyn_part_end(t_in, t_out, part, parts), false);
     }
   }
   return sum;
+}
+
+// L_in along [0, s] of the view ray, walked by one thread.
+vec3 tyn_reference_in_scattering(vec3 origin, vec3 dir, float s) {
+  return tyn_reference_in_scattering_part(origin, dir, s, 0u, 1u);
 }
 
 #endif

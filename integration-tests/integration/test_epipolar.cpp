@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "test_support.h"
+#include "tyndall_effect.h"
 
 namespace tyndall::test {
 namespace {
@@ -184,6 +185,63 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarTree,
                            for (char& c : name) c = c == '-' ? '_' : c;
                            return name;
                          });
+
+// On a GPU several threads share each marched sample's ray (ContextDesc::marchThreadsPerSample:
+// 8 there, 1 on a CPU driver such as this one): each marches an equal part of the ray's u range and
+// the parts are summed. A directional light's parts sum to the one-thread march up to rounding (the
+// closed form is additive); a spot light's lit sections cut at part boundaries are integrated
+// piecewise by the table and quadrature, which moves the result by the quadrature's own error.
+struct MarchPartsCase {
+  const char* scene;
+  bool tree;
+  double maxRelativeRmse;
+  double maxRelativeMax;
+};
+
+class EpipolarMarchParts : public ::testing::TestWithParam<MarchPartsCase> {};
+
+TEST_P(EpipolarMarchParts, EightThreadsAgreeWithOne) {
+  const MarchPartsCase& c = GetParam();
+  const host::Scene scene = loadTestScene(c.scene);
+  samples::RenderOptions o = options(Technique::Epipolar);
+  o.epipolar->minMaxTree = c.tree;
+  o.marchThreadsPerSample = 1;
+  const samples::RenderResult one = renderWithAovs(scene, o);
+  o.marchThreadsPerSample = 8;
+  const samples::RenderResult eight = renderWithAovs(scene, o);
+  const ErrorStats s = compareRgb(eight.scattering, one.scattering);
+  std::printf("[ %s, tree %s ] 8 threads per sample vs 1: %s\n", c.scene, c.tree ? "on" : "off", describe(s).c_str());
+  EXPECT_GT(s.meanReference, 0.0);
+  EXPECT_EQ(eight.stats.marchedSamples, one.stats.marchedSamples);
+  EXPECT_EQ(s.nonFinite, 0u);
+  EXPECT_LE(s.relativeRmse, c.maxRelativeRmse) << describe(s);
+  EXPECT_LE(s.relativeMax, c.maxRelativeMax) << describe(s);
+  expectNoValidationMessages();
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarMarchParts,
+                         ::testing::Values(MarchPartsCase{"pillars", true, 1e-5, 1e-4},
+                                           MarchPartsCase{"forest", false, 1e-5, 1e-4},
+                                           MarchPartsCase{"spot-lamp", true, 3e-4, 1e-2}),
+                         [](const auto& test_param) {
+                           std::string name = std::string(test_param.param.scene) + (test_param.param.tree ? "_tree" : "_plain");
+                           for (char& c : name) c = c == '-' ? '_' : c;
+                           return name;
+                         });
+
+TEST(EpipolarMarchParts, RejectsThreadCountsThatAreNotPowersOfTwo) {
+  host::Device& device = validatedDevice();
+  host::RenderSettings settings;
+  settings.width = 16;
+  settings.height = 16;
+  for (std::uint32_t threads : {3u, 12u, 128u}) {
+    std::string error;
+    EXPECT_EQ(samples::TyndallEffect::create(device, settings, Profile::Balanced, error, PipelineCreation::OnFirstUse,
+                                             threads),
+              nullptr);
+    EXPECT_NE(error.find("marchThreadsPerSample"), std::string::npos) << error;
+  }
+}
 
 const std::vector<std::string> kDirectionalPasses = {
     "epipolar_slice_end_points", "epipolar_coordinates", "epipolar_slice_uv", "epipolar_min_max_tree",

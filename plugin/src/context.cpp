@@ -175,7 +175,11 @@ Outcome Context::Impl::createSizeIndependent() {
   if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
   stats.timestampsSupported = timer.supported();
   if (Outcome o = reference.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
-  if (Outcome o = epipolar.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
+  const std::uint32_t marchParts = desc.marchThreadsPerSample != 0 ? desc.marchThreadsPerSample
+                                   : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
+                                       ? 1u
+                                       : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
+  if (Outcome o = epipolar.create(gpu, nearest, linear, desc.maxFramesInFlight, marchParts); !o) return o;
   if (Outcome o = prefiltered.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
   if (desc.pipelineCreation == PipelineCreation::AtCreate) {
@@ -272,6 +276,9 @@ Outcome Context::createContext(const ContextDesc& desc, std::unique_ptr<Context>
   }
   if (desc.maxFramesInFlight < 1 || desc.maxFramesInFlight > 8) {
     return fail(Status::InvalidArgument, "maxFramesInFlight must be in 1..8");
+  }
+  if (const std::uint32_t t = desc.marchThreadsPerSample; t > 64 || (t & (t - 1)) != 0) {
+    return fail(Status::InvalidArgument, "marchThreadsPerSample must be 0 (by device) or a power of two up to 64");
   }
   if (desc.outputExtent.width == 0 || desc.outputExtent.height == 0) {
     return fail(Status::InvalidArgument, "outputExtent must be at least 1x1");

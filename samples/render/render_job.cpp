@@ -237,7 +237,7 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
   std::unique_ptr<TyndallEffect> effect;
   if (!options.noEffect) {
     effect = TyndallEffect::create(device, renderSettingsFor(options, wantAovs), options.profile, error,
-                                   options.pipelineCreation);
+                                   options.pipelineCreation, options.marchThreadsPerSample);
     if (!effect) return false;
   }
   return renderSceneWith(device, scene, options, wantAovs, effect.get(), result, error);

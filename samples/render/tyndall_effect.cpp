@@ -88,11 +88,13 @@ ContextDesc contextDescFor(host::Device& device, const host::RenderSettings& set
 
 std::unique_ptr<TyndallEffect> TyndallEffect::create(host::Device& device, const host::RenderSettings& settings,
                                                      Profile profile, std::string& error,
-                                                     PipelineCreation pipelineCreation) {
+                                                     PipelineCreation pipelineCreation,
+                                                     std::uint32_t marchThreadsPerSample) {
   auto effect = std::unique_ptr<TyndallEffect>(new TyndallEffect());
   effect->profile_ = profile;
   ContextDesc desc = contextDescFor(device, settings);
   desc.pipelineCreation = pipelineCreation;
+  desc.marchThreadsPerSample = marchThreadsPerSample;
   desc.messageCallback = &TyndallEffect::onMessage;
   desc.messageUserData = effect.get();
   if (Outcome outcome = Context::create(desc, effect->context_); !outcome) {

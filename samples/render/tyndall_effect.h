@@ -17,7 +17,8 @@ class TyndallEffect final : public host::PostProcessEffect {
   /// Creates the Tyndall context on the host's device.
   static std::unique_ptr<TyndallEffect> create(host::Device& device, const host::RenderSettings& settings,
                                                Profile profile, std::string& error,
-                                               PipelineCreation pipelineCreation = PipelineCreation::AtCreate);
+                                               PipelineCreation pipelineCreation = PipelineCreation::AtCreate,
+                                               std::uint32_t marchThreadsPerSample = 0);
 
   bool record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) override;
   bool resize(VkExtent2D extent, std::string& error) override;

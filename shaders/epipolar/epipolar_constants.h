@@ -14,6 +14,10 @@ TYN_CONST uint TYN_EPIPOLAR_SLICE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_REFINE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_FIXUP_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_FIXUP_MAX_GROUPS = 65535u;
+// The march's groups, likewise (march.comp strides over the rest of a round).
+TYN_CONST uint TYN_EPIPOLAR_MARCH_MAX_GROUPS = 65535u;
+// Threads sharing one sample's march on a GPU (march.comp, TYN_MARCH_PARTS; a CPU driver uses 1).
+TYN_CONST uint TYN_EPIPOLAR_MARCH_PARTS_GPU = 8u;
 TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;
 // Most samples per slice (EpipolarSettings::samplesPerSlice; the refinement's shared bit words and
 // the 16-bit sample index of the march list's entries).

@@ -14,6 +14,11 @@
 
 // Specialised per light-colour texture: with one, lit sections are walked at the fine step.
 layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
+// Threads that share one sample's ray (a power of two dividing TYN_EPIPOLAR_MARCH_GROUP), each
+// marching an equal part of it, summed in shared memory. The marched samples are a few tens of
+// thousands: one thread each leaves a GPU waiting on the longest rays (coloured and spot-light
+// marches); a CPU driver runs best with one (EpipolarTechnique::marchParts).
+layout(constant_id = 2) const uint TYN_MARCH_PARTS = 1u;
 
 // The slice and the view ray being marched, for the accessors of min_max_tree.h below.
 int g_slice;
@@ -73,8 +78,10 @@ vec3 tyn_march_light_color(float u) {
 
 layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
 
-// L_in along [0, s] of the view ray sr (slice_ray.glsl), marched along the slice's line.
-vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, float s) {
+// Part `part` of TYN_MARCH_PARTS of L_in along [0, s] of the view ray sr (slice_ray.glsl), marched
+// along the slice's line: the march's u range is cut into equal parts; part 0 adds a directional
+// light's unshadowed stretches outside the map.
+vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, float s, uint part) {
   g_slice = slice;
   g_origin_texels = sr.origin_texels;
   g_step_texels = sr.step_texels;
@@ -88,7 +95,7 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   }
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
   vec3 unshadowed = vec3(0.0);
-  if (directional) {
+  if (directional && part == 0u) {
     unshadowed = sr.inside ? tyn_transmittance_integral(0.0, sr.t_in, frame.extinction.rgb) +
                                  tyn_transmittance_integral(sr.t_out, s, frame.extinction.rgb)
                            : tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
@@ -96,9 +103,16 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   vec3 lit = vec3(0.0);
   if (sr.inside) {
     int sample_count = int(epipolar.tree.x);
-    TynMinMaxMarch march = epipolar.tree.z != 0u
-                               ? tyn_min_max_march_tree(sample_count, int(epipolar.tree.y), sr.ray, TYN_MARCH_LIGHT_COLOR)
-                               : tyn_min_max_march_plain(sample_count, sr.ray, TYN_MARCH_LIGHT_COLOR);
+    float end = float(sample_count);
+    float a = clamp(sr.ray.u_begin, 0.0, end);
+    float b = clamp(sr.ray.u_end, a, end);
+    // tyn_part_begin/end (reference_march.glsl): one part is exactly [a, b].
+    float part_a = tyn_part_begin(a, b, part, TYN_MARCH_PARTS);
+    float part_b = tyn_part_end(a, b, part, TYN_MARCH_PARTS);
+    TynMinMaxMarch march =
+        epipolar.tree.z != 0u
+            ? tyn_min_max_march_tree_range(sample_count, int(epipolar.tree.y), sr.ray, TYN_MARCH_LIGHT_COLOR, part_a, part_b)
+            : tyn_min_max_march_plain_range(sample_count, sr.ray, TYN_MARCH_LIGHT_COLOR, part_a, part_b);
     lit = march.lit_integral;
   }
   if (!directional) return lit;
@@ -106,28 +120,53 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   return frame.light_radiance.rgb * tyn_phase_weighted_scattering(cos_theta) * (unshadowed + lit);
 }
 
-void main() {
-  // One thread per entry of this round of the march list; the others are interpolated later.
-  uint entry = march_first + gl_GlobalInvocationID.x;
-  if (entry >= march_round_end) return;
-  uint packed = march_samples[entry];
-  uvec2 id = uvec2(packed & 0xffffu, packed >> 16);  // x: sample, y: slice
+// This thread's part of the entry's L_in.
+vec3 tyn_march_entry(uvec2 id, uint part) {
   vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(id));
-  vec3 in_scattering = vec3(0.0);
-  if (coordinates.w > 0.5 && frame.extent.z != 0u) {
-    vec3 origin = frame.view_to_world[3].xyz;
-    vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
-    vec4 origin_direction = epipolar.tree.x != 0u ? imageLoad(slice_uv, ivec2(id.y, 0))
-                                                   : vec4(TYN_EPIPOLAR_INVALID_COORD);
-    // Slices without a line in the map and rays along the light: the Reference's texel walk.
-    bool along_slice = tyn_slice_valid(origin_direction);
-    TynSliceRay sr;
-    if (along_slice) {
-      sr = tyn_slice_ray(origin_direction, origin, dir, coordinates.z);
-      along_slice = !tyn_slice_ray_degenerate(sr);
-    }
-    in_scattering = along_slice ? tyn_march_along_slice(int(id.y), sr, origin, dir, coordinates.z)
-                                : tyn_reference_in_scattering(origin, dir, coordinates.z);
+  if (coordinates.w <= 0.5 || frame.extent.z == 0u) return vec3(0.0);
+  vec3 origin = frame.view_to_world[3].xyz;
+  vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
+  vec4 origin_direction = epipolar.tree.x != 0u ? imageLoad(slice_uv, ivec2(id.y, 0))
+                                                 : vec4(TYN_EPIPOLAR_INVALID_COORD);
+  // Slices without a line in the map and rays along the light: the Reference's texel walk.
+  bool along_slice = tyn_slice_valid(origin_direction);
+  TynSliceRay sr;
+  if (along_slice) {
+    sr = tyn_slice_ray(origin_direction, origin, dir, coordinates.z);
+    along_slice = !tyn_slice_ray_degenerate(sr);
   }
-  imageStore(epipolar_scattering, ivec2(id), vec4(in_scattering, 0.0));
+  return along_slice ? tyn_march_along_slice(int(id.y), sr, origin, dir, coordinates.z, part)
+                     : tyn_reference_in_scattering_part(origin, dir, coordinates.z, part, TYN_MARCH_PARTS);
+}
+
+shared vec3 g_parts[TYN_EPIPOLAR_MARCH_GROUP];
+
+void main() {
+  // TYN_MARCH_PARTS threads per entry of this round of the march list; the other samples are
+  // interpolated later. march_args.comp caps the groups at the dispatch limit, so groups stride
+  // over the round (a loop whose trip count is the workgroup's, as the barriers need).
+  uint per_group = TYN_EPIPOLAR_MARCH_GROUP / TYN_MARCH_PARTS;
+  uint lane = gl_LocalInvocationID.x / TYN_MARCH_PARTS;
+  uint part = gl_LocalInvocationID.x % TYN_MARCH_PARTS;
+  for (uint first = march_first + gl_WorkGroupID.x * per_group; first < march_round_end;
+       first += gl_NumWorkGroups.x * per_group) {
+    uint entry = first + lane;
+    bool listed = entry < march_round_end;
+    uvec2 id = uvec2(0u);
+    vec3 in_scattering = vec3(0.0);
+    if (listed) {
+      uint packed = march_samples[entry];
+      id = uvec2(packed & 0xffffu, packed >> 16);  // x: sample, y: slice
+      in_scattering = tyn_march_entry(id, part);
+    }
+    if (TYN_MARCH_PARTS > 1u) {
+      g_parts[gl_LocalInvocationID.x] = in_scattering;
+      barrier();
+      if (part == 0u) {
+        for (uint k = 1u; k < TYN_MARCH_PARTS; ++k) in_scattering += g_parts[gl_LocalInvocationID.x + k];
+      }
+      barrier();
+    }
+    if (listed && part == 0u) imageStore(epipolar_scattering, ivec2(id), vec4(in_scattering, 0.0));
+  }
 }

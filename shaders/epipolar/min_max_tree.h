@@ -319,12 +319,10 @@ struct TynMinMaxMarch {
 #if defined(TYN_MIN_MAX_SAMPLE)
 // The plain march: every cell of [u_begin, u_end] ∩ [0, L] against its sample. `colored`: see
 // tyn_min_max_add_colored.
+// tyn_min_max_march_plain over [a, b] ⊆ [0, L] only (one part of a ray several threads share).
 TYN_MIN_MAX_TEMPLATE
-TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_count, TynMinMaxRay ray,
-                                                bool colored) {
-  float end = float(sample_count);
-  float a = clamp(ray.u_begin, 0.0f, end);
-  float b = clamp(ray.u_end, a, end);
+TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain_range(TYN_MIN_MAX_ACCESS int sample_count, TynMinMaxRay ray,
+                                                      bool colored, float a, float b) {
   TynMinMaxLitSpan span = tyn_min_max_lit_span(a);
   TynMinMaxMarch result;
   result.steps = 0;
@@ -344,6 +342,14 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_co
   result.lit_integral = tyn_min_max_close(span, ray);
   return result;
 }
+
+TYN_MIN_MAX_TEMPLATE
+TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_count, TynMinMaxRay ray,
+                                                bool colored) {
+  float end = float(sample_count);
+  float a = clamp(ray.u_begin, 0.0f, end);
+  return tyn_min_max_march_plain_range(TYN_MIN_MAX_PASS sample_count, ray, colored, a, clamp(ray.u_end, a, end));
+}
 #endif
 
 #if defined(TYN_MIN_MAX_SAMPLE) && defined(TYN_MIN_MAX_FETCH)
@@ -357,12 +363,11 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_co
 // Every node is tested at most once and the tree has < 2L nodes, which bounds the loop.
 // `colored`: a lit node's cells are walked one by one (tyn_min_max_add_colored, at most L more
 // iterations); only shadowed nodes are skipped whole.
+// Over [a, b] ⊆ [0, L] only: one part of a ray several threads share (march.comp); the parts'
+// sections end at the part boundaries, so their sum differs from one march by rounding alone.
 TYN_MIN_MAX_TEMPLATE
-TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_count, int top_level,
-                                               TynMinMaxRay ray, bool colored) {
-  float end = float(sample_count);
-  float a = clamp(ray.u_begin, 0.0f, end);
-  float b = clamp(ray.u_end, a, end);
+TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree_range(TYN_MIN_MAX_ACCESS int sample_count, int top_level,
+                                                     TynMinMaxRay ray, bool colored, float a, float b) {
   int highest = min(top_level, tyn_min_max_highest_level(sample_count));
   TynMinMaxLitSpan span = tyn_min_max_lit_span(a);
   TynMinMaxMarch result;
@@ -416,6 +421,15 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_cou
   }
   result.lit_integral = tyn_min_max_close(span, ray);
   return result;
+}
+
+TYN_MIN_MAX_TEMPLATE
+TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_count, int top_level,
+                                               TynMinMaxRay ray, bool colored) {
+  float end = float(sample_count);
+  float a = clamp(ray.u_begin, 0.0f, end);
+  return tyn_min_max_march_tree_range(TYN_MIN_MAX_PASS sample_count, top_level, ray, colored, a,
+                                      clamp(ray.u_end, a, end));
 }
 #endif
 

@@ -240,6 +240,10 @@ struct ContextDesc {
   const VkAllocationCallbacks* allocator = nullptr;           ///< optional
   MessageCallback messageCallback = nullptr;                  ///< optional
   PipelineCreation pipelineCreation = PipelineCreation::AtCreate;  ///< default AtCreate
+  /// Threads that share one epipolar sample's ray march: 0 (default) chooses by device, 1 on a CPU
+  /// driver (the same work, serially) and 8 on a GPU (a few tens of thousands of marched samples
+  /// do not fill one, docs/EPIPOLAR.md); else a power of two up to 64.
+  std::uint32_t marchThreadsPerSample = 0;
   void* messageUserData = nullptr;                            ///< passed back to `messageCallback`
 };
 

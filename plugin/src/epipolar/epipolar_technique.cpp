@@ -14,6 +14,8 @@ namespace {
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr std::uint32_t kBindings = 17;
+// march.comp's and march_args.comp's TYN_MARCH_PARTS (constant_id 1 is the light-colour switch).
+constexpr std::uint32_t kMarchPartsConstantId = 2;
 // The march list's header: VkDispatchIndirectCommand, then the count, ..., the samples found in
 // shadow and the entries the shadow test read (epipolar_common.glsl's MarchList).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
@@ -62,7 +64,9 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   return {};
 }
 
-Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
+Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots,
+                                  std::uint32_t marchParts) {
+  marchParts_ = marchParts;
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
   const std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{{
@@ -124,13 +128,12 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
 
 Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (commonReady_) return {};
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 16> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 15> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
       {&sliceUvPipeline_, shaders::slice_uv_comp()},
       {&treePipeline_, shaders::min_max_tree_comp()},
-      {&marchArgsPipeline_, shaders::march_args_comp()},
       {&shadowTestArgsPipeline_, shaders::shadow_test_args_comp()},
       {&shadowTestPipeline_, shaders::shadow_test_comp()},
       {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
@@ -145,6 +148,12 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   for (const auto& [pipeline, spirv] : pipelines) {
     if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
   }
+  // Sized for the march's threads per sample (constant_id 2, as in march.comp).
+  const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> parts{{{kMarchPartsConstantId, marchParts_}}};
+  if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::march_args_comp(), parts, marchArgsPipeline_);
+      !o) {
+    return o;
+  }
   commonReady_ = true;
   return {};
 }
@@ -158,8 +167,8 @@ Outcome EpipolarTechnique::ensurePipelines(const Gpu& gpu, LightType light, bool
   VkPipeline& march = marchPipelines_[type][colored ? 1 : 0];
   if (march == VK_NULL_HANDLE) {
     compiled = true;
-    const std::array<std::pair<std::uint32_t, std::uint32_t>, 2> constants{
-        {{kLightTypeConstantId, type}, {1, colored ? 1u : 0u}}};
+    const std::array<std::pair<std::uint32_t, std::uint32_t>, 3> constants{
+        {{kLightTypeConstantId, type}, {1, colored ? 1u : 0u}, {kMarchPartsConstantId, marchParts_}}};
     if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::march_comp(), constants, march); !o) {
       return o;
     }

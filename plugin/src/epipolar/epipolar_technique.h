@@ -25,7 +25,8 @@ class EpipolarTechnique {
   using Bindings = ScatteringBindings;
 
   /// `linear`: the light-colour texture's sampler (linear, clamp to edge).
-  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots);
+  /// `marchParts`: threads per marched sample (ContextDesc::marchThreadsPerSample, resolved).
+  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots, std::uint32_t marchParts);
   /// Compiles every pipeline of the technique (context creation, Context::warmUp).
   Outcome createPipelines(const Gpu& gpu);
   /// Compiles what a frame with this light needs and is not compiled yet (PipelineCreation::
@@ -98,6 +99,7 @@ class EpipolarTechnique {
   VkPipeline refineIntensityPipeline_ = VK_NULL_HANDLE;
   // march.comp specialised: [light type][light-colour texture].
   std::array<std::array<VkPipeline, 2>, 3> marchPipelines_{};
+  std::uint32_t marchParts_ = 1;  ///< march.comp's and march_args.comp's TYN_MARCH_PARTS
   VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;

@@ -7,7 +7,9 @@
 # SIZES=1920x1080 SHADOW_MAPS=2048 for the issue's goals.
 # Usage: scripts/tradeoffs.sh [build-dir] (default: build)
 # Environment: SIZES (640x360), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default);
-#   FROM=out/tradeoffs/results.json writes the document again from an earlier run without measuring.
+#   FROM=out/tradeoffs/results.json writes the document again from an earlier run without measuring;
+#   DOC (docs/TRADEOFFS.md, whose choice is the code's profile table; another path keeps another
+#   device's run beside it, e.g. DOC=docs/TRADEOFFS-H100.md for the GPU run it names).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -21,6 +23,14 @@ else
   [ -n "${SCENES:-}" ] && args+=(--scenes "$SCENES")
   "$bench" "${args[@]}"
 fi
-cp "$out/tradeoffs.md" docs/TRADEOFFS.md
+doc="${DOC:-docs/TRADEOFFS.md}"
+if [ "$doc" = docs/TRADEOFFS.md ]; then
+  cp "$out/tradeoffs.md" "$doc"
+else
+  # Another device's or size's run: its choice is a measurement, not the code's profile table.
+  { head -n 1 "$out/tradeoffs.md"
+    printf '\n> A run on another device or size than docs/TRADEOFFS.md, kept for its measurements: its "choice" is what this run would pick, not `plugin/src/profiles.cpp`'"'"'s table (docs/TRADEOFFS.md is). Written by `DOC=%s scripts/tradeoffs.sh` (with `FROM=results.json` of a run on that device, or run there with SIZES and SHADOW_MAPS).\n' "$doc"
+    tail -n +2 "$out/tradeoffs.md"; } >"$doc"
+fi
 cp "$out"/pareto-*.svg "$out"/pareto-*.png docs/
-echo "wrote docs/TRADEOFFS.md and docs/pareto-*.svg/.png from $out"
+echo "wrote $doc and docs/pareto-*.svg/.png from $out"

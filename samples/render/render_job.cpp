@@ -39,8 +39,10 @@ std::string usage() {
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
          "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--prefiltered KEY=VALUE[,KEY=VALUE...]]\n"
-         "         [--debug-view samples|fixup FILE.png]\n"
+         "         [--debug-view samples|fixup FILE.png] [--march-threads N]\n"
          "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
+         "  --march-threads: threads per marched epipolar sample, a power of two up to 64 (default: 1 on a\n"
+         "    CPU driver, 8 on a GPU; ContextDesc::marchThreadsPerSample)\n"
          "  --epipolar sets the epipolar technique's parameters (the rest keep EpipolarSettings' defaults):\n"
          "    " + std::string(kEpipolarKeys) + "\n"
          "  --prefiltered sets the prefiltered technique's parameters (the rest keep PrefilteredSettings' defaults):\n"
@@ -100,6 +102,13 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       if (!value(v)) return false;
       if (!parseUint(v, 16, 16384, options.shadowMapSize) || (options.shadowMapSize & (options.shadowMapSize - 1)) != 0) {
         error = "--shadow-map-size must be a power of two in [16, 16384] (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--march-threads") {
+      if (!value(v)) return false;
+      if (!parseUint(v, 1, 64, options.marchThreadsPerSample) ||
+          (options.marchThreadsPerSample & (options.marchThreadsPerSample - 1)) != 0) {
+        error = "--march-threads must be a power of two in [1, 64] (got '" + v + "')";
         return false;
       }
     } else if (arg == "--frames") {

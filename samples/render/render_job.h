@@ -43,7 +43,7 @@ struct RenderOptions {
   /// Not on the command line: tyndall-render compiles every pipeline up front; the tests, which
   /// create a context per render and use one or two techniques, compile on first use.
   PipelineCreation pipelineCreation = PipelineCreation::AtCreate;
-  /// Not on the command line: ContextDesc::marchThreadsPerSample (0: by device).
+  /// --march-threads: ContextDesc::marchThreadsPerSample (0: by device).
   std::uint32_t marchThreadsPerSample = 0;
 };
 

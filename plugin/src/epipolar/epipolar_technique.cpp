@@ -494,8 +494,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     }
     marchRound("epipolar_march_args", "epipolar_march");
     if (constants.refinement.y < 1.0f) {
-      pass("epipolar_refine_intensity", refineIntensityPipeline_,
-           [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+      pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
       marchRound("epipolar_march_args_refined", "epipolar_march_refined");
     }
     pass("epipolar_interpolate", interpolatePipeline_,

@@ -8,14 +8,13 @@ TYN_BEGIN
 
 // Workgroup sizes: one thread per slice, per fixed-up pixel of the debug view, per ray-marching
 // sample; the refinement's threads of one slice. The fix-up itself runs one workgroup of
-// TYN_SPLIT_MARCH_PARTS threads per pixel, at most TYN_EPIPOLAR_FIXUP_MAX_GROUPS groups (the
-// smallest maxComputeWorkGroupCount[0] Vulkan allows).
+// TYN_SPLIT_MARCH_PARTS threads per pixel.
 TYN_CONST uint TYN_EPIPOLAR_SLICE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_REFINE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_FIXUP_GROUP = 64u;
-TYN_CONST uint TYN_EPIPOLAR_FIXUP_MAX_GROUPS = 65535u;
-// The march's groups, likewise (march.comp strides over the rest of a round).
-TYN_CONST uint TYN_EPIPOLAR_MARCH_MAX_GROUPS = 65535u;
+// Most groups of the indirect fix-up and march dispatches: the smallest maxComputeWorkGroupCount[0]
+// Vulkan allows (fixup.comp and march.comp stride over the rest of their list).
+TYN_CONST uint TYN_EPIPOLAR_MAX_GROUPS = 65535u;
 // Threads sharing one sample's march on a GPU (march.comp, TYN_MARCH_PARTS; a CPU driver uses 1).
 TYN_CONST uint TYN_EPIPOLAR_MARCH_PARTS_GPU = 8u;
 TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;

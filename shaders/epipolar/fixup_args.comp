@@ -8,7 +8,7 @@
 layout(local_size_x = 1) in;
 
 void main() {
-  fixup_groups[0] = min(fixup_count, TYN_EPIPOLAR_FIXUP_MAX_GROUPS);
+  fixup_groups[0] = min(fixup_count, TYN_EPIPOLAR_MAX_GROUPS);
   fixup_groups[1] = 1u;
   fixup_groups[2] = 1u;
 }

@@ -17,7 +17,7 @@ layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
 // Threads that share one sample's ray (a power of two dividing TYN_EPIPOLAR_MARCH_GROUP), each
 // marching an equal part of it, summed in shared memory. The marched samples are a few tens of
 // thousands: one thread each leaves a GPU waiting on the longest rays (coloured and spot-light
-// marches); a CPU driver runs best with one (EpipolarTechnique::marchParts).
+// marches); a CPU driver runs best with one (ContextDesc::marchThreadsPerSample).
 layout(constant_id = 2) const uint TYN_MARCH_PARTS = 1u;
 
 // The slice and the view ray being marched, for the accessors of min_max_tree.h below.
@@ -103,12 +103,10 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   vec3 lit = vec3(0.0);
   if (sr.inside) {
     int sample_count = int(epipolar.tree.x);
-    float end = float(sample_count);
-    float a = clamp(sr.ray.u_begin, 0.0, end);
-    float b = clamp(sr.ray.u_end, a, end);
-    // tyn_part_begin/end (reference_march.glsl): one part is exactly [a, b].
-    float part_a = tyn_part_begin(a, b, part, TYN_MARCH_PARTS);
-    float part_b = tyn_part_end(a, b, part, TYN_MARCH_PARTS);
+    vec2 range = tyn_min_max_range(sample_count, sr.ray);
+    // tyn_part_begin/end (reference_march.glsl): one part is exactly the whole range.
+    float part_a = tyn_part_begin(range.x, range.y, part, TYN_MARCH_PARTS);
+    float part_b = tyn_part_end(range.x, range.y, part, TYN_MARCH_PARTS);
     TynMinMaxMarch march =
         epipolar.tree.z != 0u
             ? tyn_min_max_march_tree_range(sample_count, int(epipolar.tree.y), sr.ray, TYN_MARCH_LIGHT_COLOR, part_a, part_b)

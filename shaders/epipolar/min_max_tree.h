@@ -310,6 +310,13 @@ TYN_FUNC vec3 tyn_min_max_close(TynMinMaxLitSpan span, TynMinMaxRay ray) {
                                : span.integral;
 }
 
+// The part of the ray the marches cover: [u_begin, u_end] ∩ [0, L] as (a, b), a ≤ b.
+TYN_FUNC vec2 tyn_min_max_range(int sample_count, TynMinMaxRay ray) {
+  float end = float(sample_count);
+  float a = clamp(ray.u_begin, 0.0f, end);
+  return vec2(a, clamp(ray.u_end, a, end));
+}
+
 // What a march returns.
 struct TynMinMaxMarch {
   vec3 lit_integral;  // Σ over the lit parts of ∫ e^{−σ_t t} dt (or TYN_MIN_MAX_INTEGRATE's)
@@ -346,9 +353,8 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain_range(TYN_MIN_MAX_ACCESS int sam
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_count, TynMinMaxRay ray,
                                                 bool colored) {
-  float end = float(sample_count);
-  float a = clamp(ray.u_begin, 0.0f, end);
-  return tyn_min_max_march_plain_range(TYN_MIN_MAX_PASS sample_count, ray, colored, a, clamp(ray.u_end, a, end));
+  vec2 range = tyn_min_max_range(sample_count, ray);
+  return tyn_min_max_march_plain_range(TYN_MIN_MAX_PASS sample_count, ray, colored, range.x, range.y);
 }
 #endif
 
@@ -426,10 +432,8 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree_range(TYN_MIN_MAX_ACCESS int samp
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_count, int top_level,
                                                TynMinMaxRay ray, bool colored) {
-  float end = float(sample_count);
-  float a = clamp(ray.u_begin, 0.0f, end);
-  return tyn_min_max_march_tree_range(TYN_MIN_MAX_PASS sample_count, top_level, ray, colored, a,
-                                      clamp(ray.u_end, a, end));
+  vec2 range = tyn_min_max_range(sample_count, ray);
+  return tyn_min_max_march_tree_range(TYN_MIN_MAX_PASS sample_count, top_level, ray, colored, range.x, range.y);
 }
 #endif
 
@@ -450,9 +454,9 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_cou
 // depth range over a long part exceeds the occluder's thickness, where this walk descends.
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC bool tyn_min_max_ray_shadowed(TYN_MIN_MAX_ACCESS int sample_count, int top_level, TynMinMaxRay ray) {
-  float end = float(sample_count);
-  float a = clamp(ray.u_begin, 0.0f, end);
-  float b = clamp(ray.u_end, a, end);
+  vec2 range = tyn_min_max_range(sample_count, ray);
+  float a = range.x;
+  float b = range.y;
   int highest = min(top_level, tyn_min_max_highest_level(sample_count));
   if (highest < 0) return b <= a;  // no tree to decide with
 

@@ -527,6 +527,16 @@ TEST(MinMaxMarch, ColoredTreeEqualsColoredPlainAndDouble) {
           const SliceAccess white{&s, tyn_min_max_highest_level(n)};
           const TynMinMaxMarch plain = tyn_min_max_march_plain(colored, n, r, true);
           const TynMinMaxMarch tree = tyn_min_max_march_tree(colored, n, tyn_min_max_highest_level(n), r, true);
+          // Every maximum step: a lit node is walked cell by cell from whichever level found it.
+          for (int top = -1; top <= tyn_min_max_highest_level(n) + 1; ++top) {
+            const ColoredAccess capped{{&s, std::min(top, tyn_min_max_highest_level(n))}};
+            const TynMinMaxMarch step_tree = tyn_min_max_march_tree(capped, n, top, r, true);
+            for (int c = 0; c < 3; ++c) {
+              const double rel = relativeDifference(step_tree.lit_integral[c], plain.lit_integral[c]);
+              worst_tree = std::max(worst_tree, rel);
+              ASSERT_LE(rel, 1e-6) << profileName(kind) << " L " << n << " top level " << top << " ray " << i;
+            }
+          }
           const TynMinMaxMarch white_colored = tyn_min_max_march_plain(white, n, r, true);
           const TynMinMaxMarch uncolored = tyn_min_max_march_tree(white, n, tyn_min_max_highest_level(n), r, false);
           plain_steps += plain.steps;

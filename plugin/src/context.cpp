@@ -10,6 +10,7 @@
 #include "epipolar/epipolar_geometry.h"
 #include "epipolar/epipolar_technique.h"
 #include "epipolar/min_max_tree.h"
+#include "epipolar/slice_arc.h"
 #include "frame_setup.h"
 #include "gpu.h"
 #include "prefiltered/prefiltered_technique.h"
@@ -66,7 +67,8 @@ constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 // Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
 // the shaders would run (shaders/epipolar/epipolar_geometry.h).
-gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarSettings& settings) {
+gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent,
+                                         SliceArc& arc) {
   const glm::mat4 viewProj = glm::make_mat4(frame.camera.projection.data()) * glm::make_mat4(frame.camera.view.data());
   const LightDesc& light = frame.light;
   const glm::vec4 lightClip =
@@ -75,6 +77,8 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
           : gpu::tyn_epipole_clip_local(viewProj, glm::make_vec3(light.position.data()));
   gpu::EpipolarConstants k{};
   k.epipole = gpu::tyn_epipole(lightClip);
+  arc = sliceArc(frame.camera, light, k.epipole, glm::vec2(float(extent.width), float(extent.height)));
+  k.arc = glm::vec4(arc.arc, 0.0f, 0.0f);
   k.counts = glm::uvec4(settings.slices, settings.samplesPerSlice, settings.improvedSamplePlacement ? 1u : 0u,
                         settings.initialSampleStep);
   k.refinement = glm::vec4(settings.refinementThreshold, settings.intensityRefinementThreshold,
@@ -99,6 +103,15 @@ std::string epipolarMarchNote(const gpu::EpipolarConstants& k, const EpipolarSet
   if (k.tree.x == 0) return "; point light: samples marched with the texel walk (no single slice line)";
   if (k.tree.z != 0) return "";
   return settings.minMaxTree ? "; shadow map above 4096^2: march without the min/max tree" : "; min/max tree off";
+}
+
+// Where the slices went this frame, for the stats (slice_arc.h): nothing when on the whole border.
+std::string sliceArcNote(const SliceArc& arc) {
+  if (arc.fraction >= 1.0f) return "";
+  char line[120];
+  std::snprintf(line, sizeof(line), "; slices over %.1f%% of the border (%s%s%s)", 100.0 * arc.fraction,
+                arc.cone ? "spot cone" : "", arc.cone && arc.screen ? ", " : "", arc.screen ? "epipole off screen" : "");
+  return line;
 }
 
 }  // namespace
@@ -415,8 +428,9 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   gpu::EpipolarConstants epipolarK{};
   bool buildScatteringTable = false;
   if (technique == Technique::Epipolar) {
-    epipolarK = epipolarConstants(frame, epipolarSettings);
-    note += epipolarMarchNote(epipolarK, epipolarSettings);
+    SliceArc arc;
+    epipolarK = epipolarConstants(frame, epipolarSettings, extent, arc);
+    note += epipolarMarchNote(epipolarK, epipolarSettings) + sliceArcNote(arc);
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, stats.frameIndex, desc.maxFramesInFlight);
         !o) {

@@ -49,6 +49,9 @@ struct EpipolarConstants {
                      //    the marched samples use the Reference's walk instead (point lights);
                      // y: highest tree level the march may use (yusov2013's maximum step);
                      // z: 1 = march along the min/max tree, 0 = the plain march (every cell)
+  vec4 arc;          // xy: the border arc the slices are spread over, (start, length) in perimeter
+                     //     pixels (epipolar_geometry.h "Slice arc"; length ≥ P: the whole border);
+                     // zw: unused
 };
 
 TYN_END

@@ -45,6 +45,9 @@ TYN_CONST float TYN_EPIPOLAR_INVALID_COORD = -1.0e4f;
 TYN_CONST float TYN_EPIPOLAR_MIN_SLICE_PIXELS = 1.0e-2f;
 // "No bound" for the line/rectangle clip; finite, so products with 0 stay 0.
 TYN_CONST float TYN_EPIPOLAR_UNBOUNDED = 1.0e30f;
+// Perimeter pixels past a partial arc's ends that still count as on it: the rounding of a border
+// point's round trip (~1e-3 px on a 4K border); the arc's own guard is wider (slice_arc.cpp).
+TYN_CONST float TYN_EPIPOLAR_ARC_SLACK = 1.0f / 64.0f;
 // Epipole density factors beyond this make the first sample spacing vanish in float.
 TYN_CONST float TYN_EPIPOLAR_MAX_DENSITY = 1000.0f;
 
@@ -145,12 +148,11 @@ TYN_FUNC float tyn_border_length_pixels(vec2 extent) {
   return 2.0f * ((extent.x - 1.0f) + (extent.y - 1.0f));
 }
 
-// Exit point of (continuous) slice `slice` ∈ [0, N], on the sample rectangle; see the header
-// comment for the order. Computed in pixel coordinates so that the fixed coordinate of each edge
-// is bit-identical to tyn_epipolar_screen_rect's bound.
-TYN_FUNC vec2 tyn_exit_point(float slice, uint num_slices, vec2 extent) {
+// The point at perimeter distance s ∈ [0, P] from the top-left corner of the sample rectangle,
+// clockwise (see the header comment). Computed in pixel coordinates so that the fixed coordinate
+// of each edge is bit-identical to tyn_epipolar_screen_rect's bound.
+TYN_FUNC vec2 tyn_border_point(float s, vec2 extent) {
   vec2 size = extent - 1.0f;  // edge lengths in pixels
-  float s = slice / float(num_slices) * tyn_border_length_pixels(extent);
   vec2 q;
   if (s <= size.x) {
     q = vec2(0.5f + s, 0.5f);
@@ -164,11 +166,16 @@ TYN_FUNC vec2 tyn_exit_point(float slice, uint num_slices, vec2 extent) {
   return tyn_ndc_from_pixel(q, extent);
 }
 
-// Inverse of tyn_exit_point: the continuous slice coordinate in [0, N) of a point on the sample
+// Exit point of (continuous) slice `slice` ∈ [0, N] when the slices cover the whole border.
+TYN_FUNC vec2 tyn_exit_point(float slice, uint num_slices, vec2 extent) {
+  return tyn_border_point(slice / float(num_slices) * tyn_border_length_pixels(extent), extent);
+}
+
+// Inverse of tyn_border_point: the perimeter distance in [0, P) of a point on the sample
 // rectangle. The edge is the nearest one, so a point a rounding error off the border still maps
 // to the right place; the perimeter position is continuous across corners, so the choice at a
 // corner does not matter. The top-left corner is 0 (reached from the left edge as P, wrapped).
-TYN_FUNC float tyn_border_slice_coordinate(vec2 border_point, uint num_slices, vec2 extent) {
+TYN_FUNC float tyn_border_position(vec2 border_point, vec2 extent) {
   vec2 size = extent - 1.0f;
   vec2 from_lo = tyn_pixel_from_ndc(border_point, extent) - 0.5f;  // from the left / top edge
   vec2 from_hi = size - from_lo;                                  // from the right / bottom edge
@@ -187,9 +194,60 @@ TYN_FUNC float tyn_border_slice_coordinate(vec2 border_point, uint num_slices, v
   } else {
     s = 2.0f * size.x + size.y + clamp(from_hi.y, 0.0f, size.y);
   }
+  float p = tyn_border_length_pixels(extent);
+  return s >= p ? s - p : s;
+}
+
+// Inverse of tyn_exit_point: the continuous slice coordinate in [0, N) of a point on the sample
+// rectangle, slices covering the whole border.
+TYN_FUNC float tyn_border_slice_coordinate(vec2 border_point, uint num_slices, vec2 extent) {
   float n = float(num_slices);
-  float c = s / tyn_border_length_pixels(extent) * n;
+  float c = tyn_border_position(border_point, extent) / tyn_border_length_pixels(extent) * n;
   return c >= n ? c - n : c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Slice arc: the part of the border the slices are spread over
+//
+// arc = (start, length) in perimeter pixels, start ∈ [0, P). length ≥ P: the whole border, as
+// above (slice i of N at start + i·P/N, slice N wrapping to slice 0). length < P: one arc of it,
+// slice i at start + i·length/(N − 1) (wrapped past P), the first and last slices on its ends and
+// no seam; the rest of the border has no slice. The frame's arc is the part whose epipolar planes
+// can meet the lit volume (a spot light's cone seen from outside, the exit points an off-screen
+// epipole leaves valid; slice_arc.cpp finds it, conservatively), so that all N slices sample the
+// shafts instead of spreading over directions where L_in is zero.
+
+TYN_FUNC bool tyn_arc_is_whole_border(vec2 arc, vec2 extent) {
+  return arc.y >= tyn_border_length_pixels(extent);
+}
+
+// Perimeter distance of (continuous) slice `slice` on the arc.
+TYN_FUNC float tyn_arc_border_position(float slice, uint num_slices, vec2 arc, vec2 extent) {
+  float p = tyn_border_length_pixels(extent);
+  float s = tyn_arc_is_whole_border(arc, extent)
+                ? arc.x + slice / float(num_slices) * p
+                : arc.x + slice / float(max(num_slices, 2u) - 1u) * arc.y;
+  return s > p ? s - p : s;
+}
+
+TYN_FUNC vec2 tyn_arc_exit_point(float slice, uint num_slices, vec2 arc, vec2 extent) {
+  return tyn_border_point(tyn_arc_border_position(slice, num_slices, arc, extent), extent);
+}
+
+// Inverse of tyn_arc_border_position: the continuous slice coordinate of perimeter distance s,
+// in [0, N) for the whole border, in [0, N − 1] on a partial arc, and −1 off a partial arc (no
+// slice there: L_in is zero).
+TYN_FUNC float tyn_arc_slice_coordinate(float s, uint num_slices, vec2 arc, vec2 extent) {
+  float p = tyn_border_length_pixels(extent);
+  float n = float(num_slices);
+  float from_start = s - arc.x;
+  if (from_start < 0.0f) from_start += p;
+  if (tyn_arc_is_whole_border(arc, extent)) {
+    float c = from_start / p * n;
+    return c >= n ? c - n : c;
+  }
+  if (from_start > arc.y + TYN_EPIPOLAR_ARC_SLACK) return -1.0f;
+  return min(from_start / arc.y * float(max(num_slices, 2u) - 1u), n - 1.0f);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -278,14 +336,11 @@ TYN_FUNC vec2 tyn_sample_position(vec4 end_points, float sample_index, uint samp
 // ---------------------------------------------------------------------------------------------
 // Inverse (unwarp): screen pixel → slice coordinates
 
-// Continuous slice coordinate c ∈ [0, N) of the epipolar line through p (NDC): the line from the
-// epipole through p is followed beyond p to the sample rectangle, and that border point is
-// inverted into a slice coordinate. p lies between slices tyn_slice_pair(c) with weight fract(c)
-// on the second (c ∈ [N − 1, N) blends slice N − 1 with slice 0: the seam needs no special case).
-// p is clamped to the rectangle first (pixel centres are in it anyway). At the epipole itself
-// every slice passes through p; the horizontal direction is then used, and p sits at the entry
-// of whichever slice that gives.
-TYN_FUNC float tyn_slice_coordinate(vec4 epipole, vec2 p, uint num_slices, vec2 extent) {
+// Perimeter distance of the border point of the epipolar line through p (NDC): the line from the
+// epipole through p is followed beyond p to the sample rectangle. p is clamped to the rectangle
+// first (pixel centres are in it anyway). At the epipole itself every slice passes through p; the
+// horizontal direction is then used, and p sits at the entry of whichever slice that gives.
+TYN_FUNC float tyn_line_border_position(vec4 epipole, vec2 p, vec2 extent) {
   vec4 rect = tyn_epipolar_screen_rect(extent);
   vec2 q = clamp(p, vec2(rect.x, rect.y), vec2(rect.z, rect.w));
   vec2 d = tyn_epipolar_direction(epipole, q);
@@ -293,7 +348,21 @@ TYN_FUNC float tyn_slice_coordinate(vec4 epipole, vec2 p, uint num_slices, vec2 
   d = scale > 1.0e-30f ? d / scale : vec2(1.0f, 0.0f);
   float t_exit = tyn_line_rect_interval(q, d, rect).y;
   vec2 border = clamp(q + d * max(t_exit, 0.0f), vec2(rect.x, rect.y), vec2(rect.z, rect.w));
-  return tyn_border_slice_coordinate(border, num_slices, extent);
+  return tyn_border_position(border, extent);
+}
+
+// Continuous slice coordinate c ∈ [0, N) of the epipolar line through p (NDC), slices covering
+// the whole border. p lies between slices tyn_slice_pair(c) with weight fract(c) on the second
+// (c ∈ [N − 1, N) blends slice N − 1 with slice 0: the seam needs no special case).
+TYN_FUNC float tyn_slice_coordinate(vec4 epipole, vec2 p, uint num_slices, vec2 extent) {
+  float n = float(num_slices);
+  float c = tyn_line_border_position(epipole, p, extent) / tyn_border_length_pixels(extent) * n;
+  return c >= n ? c - n : c;
+}
+
+// The same for slices on `arc`: −1 when p's line leaves the screen off a partial arc.
+TYN_FUNC float tyn_arc_slice_coordinate_of(vec4 epipole, vec2 p, uint num_slices, vec2 arc, vec2 extent) {
+  return tyn_arc_slice_coordinate(tyn_line_border_position(epipole, p, extent), num_slices, arc, extent);
 }
 
 // The two slices a continuous slice coordinate lies between.

@@ -5,8 +5,8 @@
 // where only one of the two is, the pixel extrapolates along the slice from that sample and the
 // next one on its surface. A pixel left with too little weight (a depth break no sample saw), or
 // whose two slices disagree by more than the slice-contrast threshold (a shaft or colour edge
-// between them, narrower than their spacing), is appended to the fix-up list. T is exact per
-// pixel.
+// between them, narrower than their spacing), is appended to the fix-up list. A pixel off the
+// slices' arc has L_in = 0. T is exact per pixel.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
@@ -42,8 +42,18 @@ void main() {
   vec2 slopes = tyn_epipolar_depth_slopes(ivec2(pixel), depth);
   uint slices = epipolar.counts.x;
   float density = epipolar.params.x;
-  float slice_coordinate = tyn_slice_coordinate(epipolar.epipole, ndc, slices, extent);
-  uvec2 pair = tyn_slice_pair(slice_coordinate, slices);
+  // Next to the projected light, in-scattering varies faster than any sample spacing can follow
+  // (1/d² of a local light, the phase peak): that block is ray-marched per pixel (klehm2014
+  // Fig. 8). The light may sit just off screen and still have such pixels; at infinity it has none.
+  bool near_epipole = epipolar.epipole.z > 1e-6 &&
+                      length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.params.w;
+  float slice_coordinate = tyn_arc_slice_coordinate_of(epipolar.epipole, ndc, slices, epipolar.arc.xy, extent);
+  if (slice_coordinate < 0.0 && !near_epipole) {
+    // Off the slices' arc: the pixel's epipolar plane misses the lit volume (slice_arc.cpp).
+    imageStore(out_scattering, ivec2(pixel), vec4(0.0));
+    return;
+  }
+  uvec2 pair = tyn_slice_pair(max(slice_coordinate, 0.0), slices);
   float second = fract(slice_coordinate);
 
   vec3 slice_sum[2] = vec3[2](vec3(0.0), vec3(0.0));
@@ -111,11 +121,6 @@ void main() {
     slice_edge = any(greaterThan(abs(a - b), epipolar.refinement.z * max(max(a, b), vec3(1e-30))));
   }
 
-  // Next to the projected light, in-scattering varies faster than any sample spacing can follow
-  // (1/d² of a local light, the phase peak): that block is ray-marched per pixel (klehm2014
-  // Fig. 8). The light may sit just off screen and still have such pixels; at infinity it has none.
-  bool near_epipole = epipolar.epipole.z > 1e-6 &&
-                      length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.params.w;
   if (weight_sum >= epipolar.params.z && !near_epipole && !slice_edge) {
     imageStore(out_scattering, ivec2(pixel), vec4(sum / weight_sum, 0.0));
   } else {

@@ -24,6 +24,8 @@
 //   along every edge whatever the aspect ratio, so the gap the unwarp pass interpolates across is
 //   bounded by the same P/N pixels everywhere. The slice coordinate is continuous: slice c ∈
 //   [0, N) exits at c·P/N, so the unwarp pass inverts it exactly, and slice N wraps to slice 0.
+//   That is the layout on the whole border; a frame may spread its slices over one arc of it
+//   instead ("Slice arc" below), evenly by length there too.
 // - Sampling along a slice always goes from the epipole side (entry) to the border (exit),
 //   whether the light is in front of or behind the camera; for a light behind the camera, light
 //   therefore travels on screen from the exit towards the entry. Ray marching does not care,

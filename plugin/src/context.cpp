@@ -67,6 +67,7 @@ constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 // Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
 // the shaders would run (shaders/epipolar/epipolar_geometry.h).
+// `arc` is the frame's slice arc (slice_arc.h), found from the epipole computed here.
 gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent,
                                          SliceArc& arc) {
   const glm::mat4 viewProj = glm::make_mat4(frame.camera.projection.data()) * glm::make_mat4(frame.camera.view.data());

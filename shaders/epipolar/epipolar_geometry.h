@@ -168,11 +168,6 @@ TYN_FUNC vec2 tyn_border_point(float s, vec2 extent) {
   return tyn_ndc_from_pixel(q, extent);
 }
 
-// Exit point of (continuous) slice `slice` ∈ [0, N] when the slices cover the whole border.
-TYN_FUNC vec2 tyn_exit_point(float slice, uint num_slices, vec2 extent) {
-  return tyn_border_point(slice / float(num_slices) * tyn_border_length_pixels(extent), extent);
-}
-
 // Inverse of tyn_border_point: the perimeter distance in [0, P) of a point on the sample
 // rectangle. The edge is the nearest one, so a point a rounding error off the border still maps
 // to the right place; the perimeter position is continuous across corners, so the choice at a
@@ -198,14 +193,6 @@ TYN_FUNC float tyn_border_position(vec2 border_point, vec2 extent) {
   }
   float p = tyn_border_length_pixels(extent);
   return s >= p ? s - p : s;
-}
-
-// Inverse of tyn_exit_point: the continuous slice coordinate in [0, N) of a point on the sample
-// rectangle, slices covering the whole border.
-TYN_FUNC float tyn_border_slice_coordinate(vec2 border_point, uint num_slices, vec2 extent) {
-  float n = float(num_slices);
-  float c = tyn_border_position(border_point, extent) / tyn_border_length_pixels(extent) * n;
-  return c >= n ? c - n : c;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -250,6 +237,21 @@ TYN_FUNC float tyn_arc_slice_coordinate(float s, uint num_slices, vec2 arc, vec2
   }
   if (from_start > arc.y + TYN_EPIPOLAR_ARC_SLACK) return -1.0f;
   return min(from_start / arc.y * float(max(num_slices, 2u) - 1u), n - 1.0f);
+}
+
+// The slices on the whole border from its top-left corner (the header comment's layout).
+TYN_FUNC vec2 tyn_whole_border_arc(vec2 extent) { return vec2(0.0f, tyn_border_length_pixels(extent)); }
+
+// Exit point of (continuous) slice `slice` ∈ [0, N] when the slices cover the whole border.
+TYN_FUNC vec2 tyn_exit_point(float slice, uint num_slices, vec2 extent) {
+  return tyn_arc_exit_point(slice, num_slices, tyn_whole_border_arc(extent), extent);
+}
+
+// Inverse of tyn_exit_point: the continuous slice coordinate in [0, N) of a point on the sample
+// rectangle, slices covering the whole border.
+TYN_FUNC float tyn_border_slice_coordinate(vec2 border_point, uint num_slices, vec2 extent) {
+  return tyn_arc_slice_coordinate(tyn_border_position(border_point, extent), num_slices,
+                                  tyn_whole_border_arc(extent), extent);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -353,18 +355,17 @@ TYN_FUNC float tyn_line_border_position(vec4 epipole, vec2 p, vec2 extent) {
   return tyn_border_position(border, extent);
 }
 
-// Continuous slice coordinate c ∈ [0, N) of the epipolar line through p (NDC), slices covering
-// the whole border. p lies between slices tyn_slice_pair(c) with weight fract(c) on the second
-// (c ∈ [N − 1, N) blends slice N − 1 with slice 0: the seam needs no special case).
-TYN_FUNC float tyn_slice_coordinate(vec4 epipole, vec2 p, uint num_slices, vec2 extent) {
-  float n = float(num_slices);
-  float c = tyn_line_border_position(epipole, p, extent) / tyn_border_length_pixels(extent) * n;
-  return c >= n ? c - n : c;
-}
-
-// The same for slices on `arc`: −1 when p's line leaves the screen off a partial arc.
+// Continuous slice coordinate of the epipolar line through p (NDC) for slices on `arc`: in [0, N)
+// on the whole border, −1 when p's line leaves the screen off a partial arc. p lies between
+// slices tyn_slice_pair(c) with weight fract(c) on the second (on the whole border c ∈ [N − 1, N)
+// blends slice N − 1 with slice 0: the seam needs no special case).
 TYN_FUNC float tyn_arc_slice_coordinate_of(vec4 epipole, vec2 p, uint num_slices, vec2 arc, vec2 extent) {
   return tyn_arc_slice_coordinate(tyn_line_border_position(epipole, p, extent), num_slices, arc, extent);
+}
+
+// The same with the slices covering the whole border.
+TYN_FUNC float tyn_slice_coordinate(vec4 epipole, vec2 p, uint num_slices, vec2 extent) {
+  return tyn_arc_slice_coordinate_of(epipole, p, num_slices, tyn_whole_border_arc(extent), extent);
 }
 
 // The two slices a continuous slice coordinate lies between.

@@ -48,12 +48,15 @@ void main() {
   bool near_epipole = epipolar.epipole.z > 1e-6 &&
                       length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.params.w;
   float slice_coordinate = tyn_arc_slice_coordinate_of(epipolar.epipole, ndc, slices, epipolar.arc.xy, extent);
-  if (slice_coordinate < 0.0 && !near_epipole) {
-    // Off the slices' arc: the pixel's epipolar plane misses the lit volume (slice_arc.cpp).
-    imageStore(out_scattering, ivec2(pixel), vec4(0.0));
-    return;
+  if (slice_coordinate < 0.0) {
+    if (!near_epipole) {
+      // Off the slices' arc: the pixel's epipolar plane misses the lit volume (slice_arc.cpp).
+      imageStore(out_scattering, ivec2(pixel), vec4(0.0));
+      return;
+    }
+    slice_coordinate = 0.0;  // interpolated from slice 0, then fixed up with the epipole block
   }
-  uvec2 pair = tyn_slice_pair(max(slice_coordinate, 0.0), slices);
+  uvec2 pair = tyn_slice_pair(slice_coordinate, slices);
   float second = fract(slice_coordinate);
 
   vec3 slice_sum[2] = vec3[2](vec3(0.0), vec3(0.0));

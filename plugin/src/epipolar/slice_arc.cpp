@@ -73,7 +73,7 @@ bool inWedge(const ConeWedge& w, const glm::dvec3& rayDirection) {
 SliceArc sliceArc(const CameraDesc& camera, const LightDesc& light, glm::vec4 epipole, glm::vec2 extent) {
   const double perimeter = gpu::tyn_border_length_pixels(extent);
   SliceArc whole;
-  whole.arc = glm::vec2(0.0f, static_cast<float>(perimeter));
+  whole.arc = gpu::tyn_whole_border_arc(extent);
 
   const glm::dmat4 view = glm::dmat4(glm::make_mat4(camera.view.data()));
   const glm::dmat4 projection = glm::dmat4(glm::make_mat4(camera.projection.data()));

@@ -161,6 +161,7 @@ std::vector<BadCase> badEpipolarSettings() {
       {"epipolar.maxTreeStep", [](EpipolarSettings& s) { s.maxTreeStep = 3; }},
       {"epipolar.maxTreeStep", [](EpipolarSettings& s) { s.maxTreeStep = 8192; }},
       {"epipolar.epipoleFixupRadius", [](EpipolarSettings& s) { s.epipoleFixupRadius = 300.0f; }},
+      {"epipolar.epipoleFixupHeightFraction", [](EpipolarSettings& s) { s.epipoleFixupHeightFraction = -0.01f; }},
   };
   std::vector<BadCase> cases;
   for (const auto& [field, mutate] : fields) {

@@ -5,6 +5,7 @@
 // docs/EPIPOLAR.md has the measured figures.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -402,6 +403,34 @@ TEST(EpipolarDebugViews, DrawTheSamplesAndTheFixedUpPixels) {
     const double pixels = double(kWidth) * kHeight;
     EXPECT_EQ(double(count(fixups.debugView, red)), std::round(fixups.stats.fixedUpPixelFraction * pixels));
     EXPECT_GT(count(fixups.debugView, red), 0u);
+  }
+  expectNoValidationMessages();
+}
+
+// The epipole block grows with the output (EpipolarSettings::epipoleFixupHeightFraction): its
+// radius is the larger of 8 px and 1/45 of the height, so 8 px at 108 lines and 16 px at 720.
+// Behind a wall every pixel's bilateral weights are whole (one plane of depth), so the fix-up list
+// is the block alone: a disc around the on-screen epipole.
+TEST(EpipolarFixup, TheEpipoleBlockGrowsWithTheOutput) {
+  const host::Scene scene = behindAWall();
+  struct Case {
+    std::uint32_t width, height;
+    float heightFraction;
+    double radius;
+  };
+  for (const Case c : {Case{kWidth, kHeight, 1.0f / 45.0f, 8.0}, Case{1280, 720, 1.0f / 45.0f, 16.0},
+                       Case{1280, 720, 0.0f, 8.0}}) {
+    samples::RenderOptions o = options(Technique::Epipolar);
+    o.width = c.width;
+    o.height = c.height;
+    o.frames = 3;  // the counts of a frame are read when its slot comes round again
+    o.epipolar->epipoleFixupHeightFraction = c.heightFraction;
+    const samples::RenderResult r = renderWithSharedContext(scene, o);
+    const double fixedUp = r.stats.fixedUpPixelFraction * c.width * c.height;
+    const double disc = std::numbers::pi * c.radius * c.radius;
+    std::printf("[ epipole block ] %ux%u, height fraction %.4f: %.0f pixels fixed up, disc of %.0f px: %.0f\n",
+                c.width, c.height, c.heightFraction, fixedUp, c.radius, disc);
+    EXPECT_NEAR(fixedUp / disc, 1.0, 0.05) << c.width << "x" << c.height;
   }
   expectNoValidationMessages();
 }

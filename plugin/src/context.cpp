@@ -85,7 +85,7 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.refinement = glm::vec4(settings.refinementThreshold, settings.intensityRefinementThreshold,
                            settings.sliceContrastThreshold, 0.0f);
   k.params = glm::vec4(settings.epipoleDensity, settings.bilateralDepthThreshold, settings.fixupWeightThreshold,
-                         settings.epipoleFixupRadius);
+                         epipoleBlockRadius(settings, extent.height));
   // Directional and spot lights march along each slice's line in shadow map 0; a point light's
   // rays cross six maps, so its samples take the Reference's walk. The tree's level 0 lives in
   // the build pass's shared memory, which bounds L (maps larger than 4096² march every cell).

@@ -115,8 +115,15 @@ struct EpipolarSettings {
   /// every shaft edge are fixed up, which costs more where shafts are many.
   float sliceContrastThreshold = 1.0f;
   /// Pixels within this many pixels of the projected light (on screen or just off it) are
-  /// ray-marched by the fix-up pass (klehm2014's epipole block), [0, 256], default 8.
+  /// ray-marched by the fix-up pass (klehm2014's epipole block): next to the epipole the slices
+  /// converge faster than interpolation across them can follow. [0, 256], default 8. The block's
+  /// radius is the larger of this and `epipoleFixupHeightFraction` of the output's height.
   float epipoleFixupRadius = 8.0f;
+  /// The epipole block's radius grows with the output to this fraction of its height, [0, 0.25],
+  /// default 1/45 (8 px at 360 lines, 24 px at 1080). The peak of L_in around the light (the phase
+  /// function's forward lobe, a local light's fall-off) spans a fixed angle, so a fixed number of
+  /// pixels covers less of it as the output grows (docs/EPIPOLAR.md, "Unwarp and fix-up").
+  float epipoleFixupHeightFraction = 1.0f / 45.0f;
 };
 
 /// A picture of how the technique sampled the frame, for people tuning it (tyndall-render

@@ -61,7 +61,14 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   if (!(s.epipoleFixupRadius >= 0.0f && s.epipoleFixupRadius <= 256.0f)) {
     return invalid("epipolar.epipoleFixupRadius must be in [0, 256]");
   }
+  if (!(s.epipoleFixupHeightFraction >= 0.0f && s.epipoleFixupHeightFraction <= 0.25f)) {
+    return invalid("epipolar.epipoleFixupHeightFraction must be in [0, 0.25]");
+  }
   return {};
+}
+
+float epipoleBlockRadius(const EpipolarSettings& settings, std::uint32_t height) {
+  return std::max(settings.epipoleFixupRadius, settings.epipoleFixupHeightFraction * static_cast<float>(height));
 }
 
 Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots,

@@ -20,6 +20,10 @@ namespace tyndall {
 /// Checks an EpipolarSettings' every field; the message names the field.
 Outcome validateEpipolarSettings(const EpipolarSettings& settings);
 
+/// The epipole block's radius in pixels for an output `height` pixels high: the larger of
+/// `epipoleFixupRadius` and `epipoleFixupHeightFraction` × height.
+float epipoleBlockRadius(const EpipolarSettings& settings, std::uint32_t height);
+
 class EpipolarTechnique {
  public:
   using Bindings = ScatteringBindings;

@@ -139,6 +139,37 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
                            return name;
                          });
 
+// The walk's lit sections (a point light's lit texel parts merged and integrated from the
+// semi-analytic table, reference_march.glsl TYN_WALK_LIT_SECTIONS) against the Reference's
+// quadrature per texel part: with an epipole block larger than the screen every pixel is fixed up,
+// so the epipolar output is the fix-up's walk alone. What is left is the table's error (≤ 3e-5 of
+// Ĝ, scattering_lut.h) and the quadrature's. A spot light's fix-up keeps the per-part quadrature:
+// the same code as the Reference, so it must agree to rounding.
+TEST(EpipolarLitSections, TheFixUpWalkMatchesTheReference) {
+  for (const host::LightType type : {host::LightType::Spot, host::LightType::Point}) {
+    host::Scene scene = loadTestScene("spot-lamp");
+    scene.light.type = type;
+    const char* name = type == host::LightType::Spot ? "spot" : "point";
+    SCOPED_TRACE(name);
+    samples::RenderOptions o = options(Technique::Epipolar);
+    o.width = 96;
+    o.height = 54;
+    o.frames = 3;  // the fix-up count of a frame is read when its slot comes round again
+    o.epipolar->epipoleFixupRadius = 256.0f;
+    const samples::RenderResult walked = renderWithAovs(scene, o);
+    ASSERT_EQ(walked.stats.fixedUpPixelFraction, 1.0);
+    samples::RenderOptions ref = o;
+    ref.technique = Technique::Reference;
+    const samples::RenderResult reference = renderWithAovs(scene, ref);
+    const ErrorStats s = compareRgb(walked.scattering, reference.scattering);
+    std::printf("[ lit sections, %s light ] fix-up walk vs reference: %s\n", name, describe(s).c_str());
+    EXPECT_GT(s.meanReference, 0.0);
+    EXPECT_EQ(s.nonFinite, 0u);
+    EXPECT_LE(s.relativeRmse, type == host::LightType::Spot ? 2e-5 : 1e-3) << describe(s);
+  }
+  expectNoValidationMessages();
+}
+
 // The min/max tree changes the cost, never the answer (yusov2013: the accelerated march visits
 // the same lit sections): tree on and off agree on every sample scene, directional and spot, and
 // coloured (stained-glass walks its lit nodes cell by cell); also with a short maximum step, the
@@ -435,10 +466,10 @@ TEST(EpipolarFixup, TheEpipoleBlockGrowsWithTheOutput) {
   expectNoValidationMessages();
 }
 
-// The spot light's semi-analytic table is built only when a spot light needs it and only when the
+// The semi-analytic table is built only when a spot or point light needs it and only when the
 // medium changed: in the first frame of a context, not in the next ones; never for a directional
 // light.
-TEST(EpipolarScatteringTable, BuiltOnceForASpotLightOnly) {
+TEST(EpipolarScatteringTable, BuiltOnceForALocalLightOnly) {
   auto recorded = [](const samples::RenderResult& r) {
     const auto& p = r.stats.passesRecorded;
     return std::find(p.begin(), p.end(), "epipolar_scattering_lut") != p.end();
@@ -454,6 +485,9 @@ TEST(EpipolarScatteringTable, BuiltOnceForASpotLightOnly) {
   EXPECT_FALSE(recorded(renderWithAovs(spot, o)));
   o.frames = 1;
   EXPECT_FALSE(recorded(renderWithAovs(loadTestScene("analytic-mixed"), o)));
+  host::Scene point = spot;
+  point.light.type = host::LightType::Point;
+  EXPECT_TRUE(recorded(renderWithAovs(point, o)));
   expectNoValidationMessages();
 }
 

@@ -52,8 +52,8 @@ layout(set = 0, binding = 13, std430) buffer MarchList {
 
 // The light-colour texture (common/light_color.glsl); a white texel when the frame has none.
 layout(set = 0, binding = 15) uniform sampler2D light_color;
-// The spot light's semi-analytic scattering table (epipolar/scattering_lut.h), built by
-// scattering_lut.comp when the medium changes; a 1×1 placeholder before a spot light needs it.
+// The spot and point lights' semi-analytic scattering table (epipolar/scattering_lut.h), built by
+// scattering_lut.comp when the medium changes; a 1×1 placeholder before a local light needs it.
 layout(set = 0, binding = 16, rgba32f) uniform image2D scattering_lut;
 // The debug view (DebugView), bound only for the debug passes.
 layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D debug_image;

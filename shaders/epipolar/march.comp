@@ -7,9 +7,11 @@
 // integrated in closed form; a spot light's from yusov2013's semi-analytic table; with a
 // light-colour texture lit sections are walked at the fine step, each part times its colour
 // (yusov2013 "Colored Light Shafts"). Point lights
-// (six maps, no single line) and slices without a line in the map use the Reference's texel walk.
+// (six maps, no single line) and slices without a line in the map use the Reference's texel walk,
+// with its lit sections integrated from the same table (TYN_WALK_LIT_SECTIONS).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
+#define TYN_WALK_LIT_SECTIONS
 #include "reference/reference_march.glsl"
 
 // Specialised per light-colour texture: with one, lit sections are walked at the fine step.

@@ -799,16 +799,17 @@ TynSpotCone tyn_spot_cone_from_frame(TynLightRay r, vec3 view_dir) {
                        frame.light_radiance.w);
 }
 
-#if defined(TYN_SCATTERING_LUT_FETCH)
+#if defined(TYN_SCATTERING_LUT_FETCH) && defined(TYN_WALK_LIT_SECTIONS)
 // L_in from the lit section [a, b] of the view ray (origin, unit view_dir) for the frame's spot or
-// point light, colour·intensity included. A march should hoist the medium, ray and cone out of
-// its loop and call tyn_spot_segment / tyn_scattering_lut_segment per lit section instead.
+// point light, colour·intensity included: the texel walk's lit sections (reference/
+// reference_march.glsl, TYN_WALK_LIT_SECTIONS). Sections are few per ray, so the medium, ray and
+// cone are set up per call; the march along a slice hoists them out of its loop instead.
+// TYN_LIGHT_TYPE (common/medium.glsl, a specialisation constant) picks the integral at compile time.
 vec3 tyn_local_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b) {
   TynMedium m = tyn_medium_from_frame();
   TynLightRay r = tyn_light_ray(origin, view_dir, frame.light_position.xyz);
-  vec3 s = frame.counts.x == TYN_LIGHT_SPOT
-               ? tyn_spot_segment(m, r, tyn_spot_cone_from_frame(r, view_dir), a, b)
-               : tyn_scattering_lut_segment(m, r, a, b);
+  vec3 s = TYN_LIGHT_TYPE == TYN_LIGHT_SPOT ? tyn_spot_segment(m, r, tyn_spot_cone_from_frame(r, view_dir), a, b)
+                                            : tyn_scattering_lut_segment(m, r, a, b);
   return frame.light_radiance.rgb * s;
 }
 #endif

@@ -324,7 +324,8 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
 
 Outcome EpipolarTechnique::prepareScatteringTable(const Gpu& gpu, const FrameDesc& frame, bool& build) {
   build = false;
-  if (frame.light.type != LightType::Spot || frame.shadowMaps.empty()) return {};
+  // Spot and point lights: the march and the fix-up integrate their lit sections from it.
+  if (frame.light.type == LightType::Directional || frame.shadowMaps.empty()) return {};
   if (scatteringLut_.image == VK_NULL_HANDLE) {
     if (Outcome o = createImage(gpu, VK_FORMAT_R32G32B32A32_SFLOAT,
                                 {gpu::TYN_SCATTERING_LUT_WIDTH, gpu::TYN_SCATTERING_LUT_HEIGHT}, kSampleUsage,

@@ -53,9 +53,9 @@ class EpipolarTechnique {
               const gpu::EpipolarConstants& constants, LightType light, bool buildTable, VkExtent2D extent,
               GpuTimer& timer, std::vector<std::string>& passes);
 
-  /// A spot light's march reads the semi-analytic scattering table (yusov2013), built for the
-  /// frame's medium: creates the table at the first spot light and says whether this frame must
-  /// (re)build it (the medium changed since the last build).
+  /// A spot or point light's march and fix-up read the semi-analytic scattering table (yusov2013),
+  /// built for the frame's medium: creates the table at the first such light and says whether this
+  /// frame must (re)build it (the medium changed since the last build).
   Outcome prepareScatteringTable(const Gpu& gpu, const FrameDesc& frame, bool& build);
 
   struct Counts {

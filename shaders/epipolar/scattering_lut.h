@@ -17,7 +17,7 @@
 //   per lit section [a, b] (view distances from the camera, a ≥ 0):
 //                     L_in += light_radiance.rgb * (spot ? tyn_spot_segment(m, r, cone, a, b)
 //                                                        : tyn_scattering_lut_segment(m, r, a, b));
-// (tyn_local_light_lut_segment does all of it from `frame` for one section.) Sections that touch
+// (tyn_point_light_lut_segment does it from `frame` for a point light's section.) Sections that touch
 // should be merged first (as min_max_tree.h's accumulator does): one call per maximal lit interval.
 // The table: a R32G32B32A32_SFLOAT image of TYN_SCATTERING_LUT_WIDTH × HEIGHT = 1024 × 256 texels
 // (4 MiB), written by a build pass (one invocation per row calling tyn_scattering_lut_build_row,
@@ -800,17 +800,14 @@ TynSpotCone tyn_spot_cone_from_frame(TynLightRay r, vec3 view_dir) {
 }
 
 #if defined(TYN_SCATTERING_LUT_FETCH) && defined(TYN_WALK_LIT_SECTIONS)
-// L_in from the lit section [a, b] of the view ray (origin, unit view_dir) for the frame's spot or
-// point light, colour·intensity included: the texel walk's lit sections (reference/
-// reference_march.glsl, TYN_WALK_LIT_SECTIONS). Sections are few per ray, so the medium, ray and
-// cone are set up per call; the march along a slice hoists them out of its loop instead.
-// TYN_LIGHT_TYPE (common/medium.glsl, a specialisation constant) picks the integral at compile time.
-vec3 tyn_local_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b) {
+// L_in from the lit section [a, b] of the view ray (origin, unit view_dir) for the frame's point
+// light, colour·intensity included: the texel walk's lit sections (reference/reference_march.glsl,
+// TYN_WALK_LIT_SECTIONS, which merges them for point lights only). Sections are few per ray, so
+// the medium and the ray are set up per call; the march along a slice hoists them out of its loop.
+vec3 tyn_point_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b) {
   TynMedium m = tyn_medium_from_frame();
   TynLightRay r = tyn_light_ray(origin, view_dir, frame.light_position.xyz);
-  vec3 s = TYN_LIGHT_TYPE == TYN_LIGHT_SPOT ? tyn_spot_segment(m, r, tyn_spot_cone_from_frame(r, view_dir), a, b)
-                                            : tyn_scattering_lut_segment(m, r, a, b);
-  return frame.light_radiance.rgb * s;
+  return frame.light_radiance.rgb * tyn_scattering_lut_segment(m, r, a, b);
 }
 #endif
 #endif

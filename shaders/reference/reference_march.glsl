@@ -54,9 +54,10 @@ float tyn_shadow_texel(uint map, ivec2 texel) {
 // Not with a light-colour texture, whose colour varies along a section (the quadrature takes it
 // at every node). Not for a spot light either: only its fix-up walks, and there the sections'
 // penumbra quadrature made lavapipe's fix-up slower (spot-lamp 1920×1080, Balanced, one run of 4
-// frames each: 576 against 300 ms), since a CPU driver runs a branch that any lane takes for all of them. The Reference
-// keeps the per-part quadrature: it is the brute force the table is checked against.
-vec3 tyn_local_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b);
+// frames each: 576 against 300 ms), since a CPU driver runs a branch that any lane takes for all
+// of them. The Reference keeps the per-part quadrature: it is the brute force the table is
+// checked against.
+vec3 tyn_point_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b);
 #endif
 
 // Walks [t0, t1] (already inside the map) texel by texel. A directional light returns
@@ -119,7 +120,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
         // the next exactly); any other closes it and starts the next.
         else if (sections) {
           if (lit_begin != section.y) {
-            if (section.y > section.x) sum += tyn_local_light_lut_segment(origin, dir, section.x, section.y);
+            if (section.y > section.x) sum += tyn_point_light_lut_segment(origin, dir, section.x, section.y);
             section.x = lit_begin;
           }
           section.y = lit_end;
@@ -139,7 +140,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
     if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) break;
   }
 #ifdef TYN_WALK_LIT_SECTIONS
-  if (sections && section.y > section.x) sum += tyn_local_light_lut_segment(origin, dir, section.x, section.y);
+  if (sections && section.y > section.x) sum += tyn_point_light_lut_segment(origin, dir, section.x, section.y);
 #endif
   return sum;
 }

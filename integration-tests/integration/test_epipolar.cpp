@@ -172,7 +172,7 @@ TEST(EpipolarLitSections, TheFixUpWalkMatchesTheReference) {
 
 // The min/max tree changes the cost, never the answer (yusov2013: the accelerated march visits
 // the same lit sections): tree on and off agree on every sample scene, directional and spot, and
-// coloured (stained-glass walks its lit nodes cell by cell); also with a short maximum step, the
+// coloured (stained-glass walks its lit nodes chunk by chunk); also with a short maximum step, the
 // form in which lavapipe once miscompiled the coloured march (min_max_tree.h).
 struct TreeCase {
   const char* scene;
@@ -263,7 +263,15 @@ TEST_P(EpipolarMarchParts, EightThreadsAgreeWithOne) {
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarMarchParts,
                          ::testing::Values(MarchPartsCase{"pillars", true, 1e-5, 1e-4},
                                            MarchPartsCase{"forest", false, 1e-5, 1e-4},
-                                           MarchPartsCase{"spot-lamp", true, 3e-4, 1e-2}),
+                                           MarchPartsCase{"spot-lamp", true, 3e-4, 1e-2},
+                                           // Coloured: a section of one chunk (up to a colour texel)
+                                           // is integrated by one 4-node quadrature, which a bend of
+                                           // the bilinear colour inside it puts off by up to a few
+                                           // percent of that section; the parts cut some sections
+                                           // elsewhere. (Chunks against cell-by-cell sections,
+                                           // 640x360 Balanced: 0.12% relative RMSE, the error
+                                           // against the Reference 3.403% against 3.406%.)
+                                           MarchPartsCase{"stained-glass", true, 1e-3, 5e-2}),
                          [](const auto& test_param) {
                            std::string name = std::string(test_param.param.scene) + (test_param.param.tree ? "_tree" : "_plain");
                            for (char& c : name) c = c == '-' ? '_' : c;

@@ -62,7 +62,7 @@ TEST(LightColor, ConstantColourScalesEveryTechnique) {
     EXPECT_EQ(colored.stats.technique, technique);
     EXPECT_GT(s.meanReference, 0.0);
     EXPECT_EQ(s.nonFinite, 0u);
-    // Float rounding only: the coloured march integrates cell by cell where the white one merges
+    // Float rounding only: the coloured march integrates chunk by chunk where the white one merges
     // lit cells. (Relative to the mean |L_in|, which the spot's peak exceeds ~1000-fold here.)
     EXPECT_LE(s.relativeRmse, 1e-4) << to_string(technique) << ": " << describe(s);
     EXPECT_LE(s.relativeMax, 1e-2) << to_string(technique) << ": " << describe(s);

@@ -383,7 +383,7 @@ TEST(MinMaxMarch, TreeEqualsPlainMarchForEveryMaxStep) {
         for (int i = 0; i < rays_per_profile; ++i) {
           const TynMinMaxRay r = randomRay(n, rng);
           const SliceAccess plain_access{&s, -1};
-          const TynMinMaxMarch plain = tyn_min_max_march_plain(plain_access, n, r, false);
+          const TynMinMaxMarch plain = tyn_min_max_march_plain(plain_access, n, r, 0);
           bad_reads += plain_access.bad_reads;
 
           // The plain march against the same lit set integrated in double.
@@ -404,7 +404,7 @@ TEST(MinMaxMarch, TreeEqualsPlainMarchForEveryMaxStep) {
           const int highest = tyn_min_max_highest_level(n);
           for (int top = -1; top <= highest + 1; ++top) {
             const SliceAccess access{&s, std::min(top, highest)};
-            const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r, false);
+            const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r, 0);
             bad_reads += access.bad_reads;
             for (int c = 0; c < 3; ++c) {
               const double rel = relativeDifference(tree.lit_integral[c], plain.lit_integral[c]);
@@ -449,7 +449,7 @@ TEST(MinMaxShadowTest, ShadowedRaysMarchToExactlyZero) {
           // Half the rays lifted above the profile's range, where a shadowed verdict is possible.
           if (i % 2 == 0) r.depth_begin = std::max(r.depth_begin, uniform(rng, 0.85f, 0.99f));
           const SliceAccess plain_access{&s, -1};
-          const bool plain_zero = tyn_min_max_march_plain(plain_access, n, r, false).lit_integral == vec3(0.0f);
+          const bool plain_zero = tyn_min_max_march_plain(plain_access, n, r, 0).lit_integral == vec3(0.0f);
           const int highest = tyn_min_max_highest_level(n);
           for (int top = 0; top <= highest; ++top) {
             const SliceAccess access{&s, top};
@@ -458,7 +458,7 @@ TEST(MinMaxShadowTest, ShadowedRaysMarchToExactlyZero) {
             if (!shadowed) continue;
             ++accepted;
             ASSERT_TRUE(plain_zero) << profileName(kind) << " L " << n << " top " << top << " ray " << i;
-            ASSERT_EQ(tyn_min_max_march_tree(access, n, top, r, false).lit_integral, vec3(0.0f))
+            ASSERT_EQ(tyn_min_max_march_tree(access, n, top, r, 0).lit_integral, vec3(0.0f))
                 << profileName(kind) << " L " << n << " top " << top << " ray " << i;
           }
           if (plain_zero) zero_rays += highest + 1;
@@ -495,10 +495,10 @@ TEST(MinMaxShadowTest, DescendsUnderATiltedOccluder) {
   const vec2 whole = access.fetch(tyn_min_max_highest_level(n), 0);
   ASSERT_GT(whole.y, 0.22f);  // one bound over the span cannot decide
   EXPECT_TRUE(tyn_min_max_ray_shadowed(access, n, tyn_min_max_highest_level(n), under));
-  EXPECT_EQ(tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), under, false).lit_integral, vec3(0.0f));
+  EXPECT_EQ(tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), under, 0).lit_integral, vec3(0.0f));
   const TynMinMaxRay grazing = tyn_min_max_ray(0.0f, float(n), 0.22f, 0.78f, 0.0f, 100.0f, vec3(0.01f));
   EXPECT_FALSE(tyn_min_max_ray_shadowed(access, n, tyn_min_max_highest_level(n), grazing));
-  EXPECT_GT(tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), grazing, false).lit_integral.x, 0.0f);
+  EXPECT_GT(tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), grazing, 0).lit_integral.x, 0.0f);
   EXPECT_EQ(access.bad_reads, 0);
 }
 
@@ -510,69 +510,99 @@ struct ColoredAccess : SliceAccess {
 };
 dvec3 colorDouble(double u) { return dvec3(0.6 + 0.4 * std::sin(0.37 * u), 0.5 + 0.5 * std::cos(0.11 * u), 0.25); }
 
-// Coloured marches: every lit part is taken at the fine step with its colour, so the tree (which
-// now only skips shadowed nodes) still equals the plain march, both equal Σ colour(middle of the
-// part) · ∫ over the part in double, and a white light gives the uncoloured march's result.
+// The plain march's lit parts merged where they touch inside one chunk of `chunk` cells: the
+// sections a coloured march integrates (tyn_min_max_add_colored).
+Intervals coloredSectionsDouble(const Slice& s, const TynMinMaxRay& r, int chunk) {
+  Intervals sections;
+  for (const auto& part : plainLitSetDouble(s, r)) {
+    const bool chunkStart = std::fmod(part.first, double(chunk)) == 0.0;
+    if (!sections.empty() && sections.back().second == part.first && !chunkStart) {
+      sections.back().second = part.second;
+    } else {
+      sections.push_back(part);
+    }
+  }
+  return sections;
+}
+
+// Coloured marches, with chunks of one cell (yusov2013's fine step, a directional light's) and of
+// eight (a spot light's under a coarser colour texture): the tree (which then only skips shadowed
+// nodes whole) still equals the plain march, both equal Σ colour(middle of the section) · ∫ over
+// the section in double, and a white light gives the uncoloured march's result.
 TEST(MinMaxMarch, ColoredTreeEqualsColoredPlainAndDouble) {
+  EXPECT_EQ(tyn_min_max_colored_chunk(2048, 256), 8);
+  EXPECT_EQ(tyn_min_max_colored_chunk(2048, 300), 4);  // 6.8 shadow texels per colour texel
+  EXPECT_EQ(tyn_min_max_colored_chunk(512, 4096), 1);
   std::mt19937 rng(48);
-  double worst_tree = 0.0, worst_double = 0.0, worst_white = 0.0;
-  long plain_steps = 0, tree_steps = 0, uncolored_tree_steps = 0;
-  for (Profile kind : kProfiles) {
-    for (int n : {64, 512}) {
-      for (int p = 0; p < 6; ++p) {
-        const Slice s = makeProfile(kind, n, rng);
-        for (int i = 0; i < 40; ++i) {
-          const TynMinMaxRay r = randomRay(n, rng);
-          const ColoredAccess colored{{&s, tyn_min_max_highest_level(n)}};
-          const SliceAccess white{&s, tyn_min_max_highest_level(n)};
-          const TynMinMaxMarch plain = tyn_min_max_march_plain(colored, n, r, true);
-          const TynMinMaxMarch tree = tyn_min_max_march_tree(colored, n, tyn_min_max_highest_level(n), r, true);
-          // Every maximum step: a lit node is walked cell by cell from whichever level found it.
-          for (int top = -1; top <= tyn_min_max_highest_level(n) + 1; ++top) {
-            const ColoredAccess capped{{&s, std::min(top, tyn_min_max_highest_level(n))}};
-            const TynMinMaxMarch step_tree = tyn_min_max_march_tree(capped, n, top, r, true);
+  for (int chunk : {1, 8}) {
+    double worst_tree = 0.0, worst_double = 0.0, worst_white = 0.0;
+    long plain_steps = 0, tree_steps = 0, uncolored_tree_steps = 0, cell_tree_steps = 0;
+    for (Profile kind : kProfiles) {
+      for (int n : {64, 512}) {
+        for (int p = 0; p < 6; ++p) {
+          const Slice s = makeProfile(kind, n, rng);
+          for (int i = 0; i < 40; ++i) {
+            const TynMinMaxRay r = randomRay(n, rng);
+            const ColoredAccess colored{{&s, tyn_min_max_highest_level(n)}};
+            const SliceAccess white{&s, tyn_min_max_highest_level(n)};
+            const TynMinMaxMarch plain = tyn_min_max_march_plain(colored, n, r, chunk);
+            const TynMinMaxMarch tree = tyn_min_max_march_tree(colored, n, tyn_min_max_highest_level(n), r, chunk);
+            // Every maximum step: a lit node is walked chunk by chunk from whichever level found it.
+            for (int top = -1; top <= tyn_min_max_highest_level(n) + 1; ++top) {
+              const ColoredAccess capped{{&s, std::min(top, tyn_min_max_highest_level(n))}};
+              const TynMinMaxMarch step_tree = tyn_min_max_march_tree(capped, n, top, r, chunk);
+              for (int c = 0; c < 3; ++c) {
+                const double rel = relativeDifference(step_tree.lit_integral[c], plain.lit_integral[c]);
+                worst_tree = std::max(worst_tree, rel);
+                ASSERT_LE(rel, 1e-6) << profileName(kind) << " L " << n << " top level " << top << " ray " << i
+                                     << " chunk " << chunk;
+              }
+            }
+            const TynMinMaxMarch white_colored = tyn_min_max_march_plain(white, n, r, chunk);
+            const TynMinMaxMarch uncolored = tyn_min_max_march_tree(white, n, tyn_min_max_highest_level(n), r, 0);
+            plain_steps += plain.steps;
+            tree_steps += tree.steps;
+            uncolored_tree_steps += uncolored.steps;
+            cell_tree_steps += tyn_min_max_march_tree(colored, n, tyn_min_max_highest_level(n), r, 1).steps;
             for (int c = 0; c < 3; ++c) {
-              const double rel = relativeDifference(step_tree.lit_integral[c], plain.lit_integral[c]);
-              worst_tree = std::max(worst_tree, rel);
-              ASSERT_LE(rel, 1e-6) << profileName(kind) << " L " << n << " top level " << top << " ray " << i;
+              worst_tree = std::max(worst_tree, relativeDifference(tree.lit_integral[c], plain.lit_integral[c]));
+              ASSERT_LE(relativeDifference(tree.lit_integral[c], plain.lit_integral[c]), 1e-6)
+                  << profileName(kind) << " L " << n << " ray " << i << " chunk " << chunk;
+              // Σ colour(middle) · ∫ over each section, in double.
+              double expected = 0.0, full = 0.0;
+              for (const auto& [a, b] : coloredSectionsDouble(s, r, chunk)) {
+                expected += colorDouble(0.5 * (a + b))[c] * integrate(r, {{a, b}}, c);
+              }
+              const double a = std::clamp(double(r.u_begin), 0.0, double(n));
+              full = integrate(r, {{a, std::clamp(double(r.u_end), a, double(n))}}, c);
+              const double err = std::abs(double(plain.lit_integral[c]) - expected);
+              worst_double = std::max(worst_double, full > 0.0 ? err / full : err);
+              const double position_ulp = std::nextafter(float(n), 2.0f * float(n)) - float(n);
+              ASSERT_LE(err, 1e-4 * full + 4.0 * position_ulp * std::abs(double(r.t_slope)) + 1e-9)
+                  << profileName(kind) << " L " << n << " ray " << i << " channel " << c << " chunk " << chunk;
+              const double white_difference =
+                  relativeDifference(white_colored.lit_integral[c], uncolored.lit_integral[c]);
+              worst_white = std::max(worst_white, white_difference);
+              ASSERT_LE(white_difference, 1e-4) << profileName(kind) << " L " << n << " ray " << i;
             }
-          }
-          const TynMinMaxMarch white_colored = tyn_min_max_march_plain(white, n, r, true);
-          const TynMinMaxMarch uncolored = tyn_min_max_march_tree(white, n, tyn_min_max_highest_level(n), r, false);
-          plain_steps += plain.steps;
-          tree_steps += tree.steps;
-          uncolored_tree_steps += uncolored.steps;
-          for (int c = 0; c < 3; ++c) {
-            worst_tree = std::max(worst_tree, relativeDifference(tree.lit_integral[c], plain.lit_integral[c]));
-            ASSERT_LE(relativeDifference(tree.lit_integral[c], plain.lit_integral[c]), 1e-6)
-                << profileName(kind) << " L " << n << " ray " << i;
-            // Σ colour(middle) · ∫ over each cell's lit part, in double.
-            double expected = 0.0, full = 0.0;
-            for (const auto& [a, b] : plainLitSetDouble(s, r)) {
-              expected += colorDouble(0.5 * (a + b))[c] * integrate(r, {{a, b}}, c);
-            }
-            const double a = std::clamp(double(r.u_begin), 0.0, double(n));
-            full = integrate(r, {{a, std::clamp(double(r.u_end), a, double(n))}}, c);
-            const double err = std::abs(double(plain.lit_integral[c]) - expected);
-            worst_double = std::max(worst_double, full > 0.0 ? err / full : err);
-            const double position_ulp = std::nextafter(float(n), 2.0f * float(n)) - float(n);
-            ASSERT_LE(err, 1e-4 * full + 4.0 * position_ulp * std::abs(double(r.t_slope)) + 1e-9)
-                << profileName(kind) << " L " << n << " ray " << i << " channel " << c;
-            const double white_difference = relativeDifference(white_colored.lit_integral[c], uncolored.lit_integral[c]);
-            worst_white = std::max(worst_white, white_difference);
-            ASSERT_LE(white_difference, 1e-4) << profileName(kind) << " L " << n << " ray " << i;
           }
         }
       }
     }
+    // Shadowed nodes are still skipped whole and lit ones walked chunk by chunk: the coloured tree
+    // costs more than the uncoloured one and less than the plain march, and chunks of eight cells
+    // cost less than single cells.
+    EXPECT_GT(tree_steps, uncolored_tree_steps);
+    EXPECT_LT(tree_steps, plain_steps);
+    if (chunk > 1) {
+      EXPECT_LT(tree_steps, cell_tree_steps);
+    }
+    std::printf("[ MinMax ] coloured, chunk %d: worst tree/plain %.2e, plain vs double %.2e of the unshadowed "
+                "integral, white vs uncoloured %.2e; steps plain %ld, coloured tree %ld (cell by cell %ld), "
+                "uncoloured tree %ld\n",
+                chunk, worst_tree, worst_double, worst_white, plain_steps, tree_steps, cell_tree_steps,
+                uncolored_tree_steps);
   }
-  // Shadowed nodes are still skipped whole and lit ones walked cell by cell: the coloured tree
-  // costs more than the uncoloured one and less than the plain march.
-  EXPECT_GT(tree_steps, uncolored_tree_steps);
-  EXPECT_LT(tree_steps, plain_steps);
-  std::printf("[ MinMax ] coloured: worst tree/plain %.2e, plain vs double %.2e of the unshadowed integral, "
-              "white vs uncoloured %.2e; steps plain %ld, coloured tree %ld, uncoloured tree %ld\n",
-              worst_tree, worst_double, worst_white, plain_steps, tree_steps, uncolored_tree_steps);
 }
 
 // Fully lit or fully shadowed stretches cost one node; the maximum step caps the stride.
@@ -591,21 +621,21 @@ TEST(MinMaxMarch, StepCountsFarBelowTheSampleCount) {
   const TynMinMaxRay shadowed = tyn_min_max_ray(0.0f, float(n), 0.7f, 0.9f, 0.0f, 100.0f, sigma);
   for (int top = 0; top <= highest; ++top) {
     const SliceAccess access{&s, top};
-    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, lit, false).steps, n / tyn_min_max_node_span(top));
-    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, shadowed, false).steps, n / tyn_min_max_node_span(top));
+    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, lit, 0).steps, n / tyn_min_max_node_span(top));
+    EXPECT_EQ(tyn_min_max_march_tree(access, n, top, shadowed, 0).steps, n / tyn_min_max_node_span(top));
   }
   const SliceAccess full{&s, highest};
-  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, lit, false).steps, 1);
-  EXPECT_EQ(tyn_min_max_march_plain(full, n, lit, false).steps, n);
-  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, shadowed, false).lit_integral, vec3(0.0f));
+  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, lit, 0).steps, 1);
+  EXPECT_EQ(tyn_min_max_march_plain(full, n, lit, 0).steps, n);
+  EXPECT_EQ(tyn_min_max_march_tree(full, n, highest, shadowed, 0).lit_integral, vec3(0.0f));
 
   // A ray crossing the constant occluder depth once: one root-to-leaf path down and one up.
   const TynMinMaxRay crossing = tyn_min_max_ray(0.0f, float(n), 0.2f, 0.9f, 0.0f, 100.0f, sigma);
-  const int crossing_steps = tyn_min_max_march_tree(full, n, highest, crossing, false).steps;
+  const int crossing_steps = tyn_min_max_march_tree(full, n, highest, crossing, 0).steps;
   EXPECT_LE(crossing_steps, 2 * (highest + 2));
   // Starting mid-slice at an odd position: the march climbs back up in log L steps.
   const TynMinMaxRay offset = tyn_min_max_ray(1234.5f, 4000.25f, 0.1f, 0.5f, 3.0f, 90.0f, sigma);
-  const int offset_steps = tyn_min_max_march_tree(full, n, highest, offset, false).steps;
+  const int offset_steps = tyn_min_max_march_tree(full, n, highest, offset, 0).steps;
   EXPECT_LE(offset_steps, 2 * (highest + 2));
 
   // Half shadowed, half lit: the root is mixed, its two children decide.
@@ -615,7 +645,7 @@ TEST(MinMaxMarch, StepCountsFarBelowTheSampleCount) {
   }
   buildTree(s);
   const TynMinMaxRay flat = tyn_min_max_ray(0.0f, float(n), 0.5f, 0.5f, 0.0f, 100.0f, sigma);
-  const TynMinMaxMarch halves = tyn_min_max_march_tree(full, n, highest, flat, false);
+  const TynMinMaxMarch halves = tyn_min_max_march_tree(full, n, highest, flat, 0);
   EXPECT_EQ(halves.steps, 3);
   EXPECT_NEAR(halves.lit_integral.z, 50.0f, 1e-4f);  // σ = 0: the lit half's length 100 / 2
   EXPECT_EQ(full.bad_reads, 0);
@@ -820,7 +850,7 @@ TEST(MinMaxConservative, LineMarchAgreesWithTheTexelExactWalk) {
         length_ray.t_slope = 1.0f;
         length_ray.sigma_t = vec3(0.0f);
         const SliceAccess access{&s, highest};
-        EXPECT_NEAR(tyn_min_max_march_plain(access, n, length_ray, false).lit_integral.x, measure(lit1d), 1e-4);
+        EXPECT_NEAR(tyn_min_max_march_plain(access, n, length_ray, 0).lit_integral.x, measure(lit1d), 1e-4);
 
         // Disagreement per piece: 1D lit where the walk is strictly shadowed, and vice versa.
         std::vector<double> cell_disagreement(static_cast<size_t>(n), 0.0);
@@ -885,9 +915,9 @@ TEST(MinMaxConservative, LineMarchAgreesWithTheTexelExactWalk) {
         }
 
         // And on these realistic slices too, the tree equals the plain march at every max step.
-        const TynMinMaxMarch plain = tyn_min_max_march_plain(access, n, r, false);
+        const TynMinMaxMarch plain = tyn_min_max_march_plain(access, n, r, 0);
         for (int top = -1; top <= highest; ++top) {
-          const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r, false);
+          const TynMinMaxMarch tree = tyn_min_max_march_tree(access, n, top, r, 0);
           for (int c = 0; c < 3; ++c) {
             worst_tree = std::max(worst_tree, relativeDifference(tree.lit_integral[c], plain.lit_integral[c]));
           }

@@ -94,7 +94,17 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
     const bool tree = settings.minMaxTree && samples <= static_cast<int>(gpu::TYN_EPIPOLAR_TREE_MAX_SAMPLES);
     const int topLevel = std::min(gpu::tyn_min_max_level_for_max_step(static_cast<int>(settings.maxTreeStep)),
                                   gpu::tyn_min_max_highest_level(samples));
-    k.tree = glm::uvec4(static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(topLevel), tree ? 1u : 0u, 0u);
+    // With a light-colour texture a directional light's lit parts are integrated cell by cell (one
+    // colour each); a spot light's quadrature takes the colour at every node, so its sections may
+    // span a colour texel (min_max_tree.h, tyn_min_max_add_colored).
+    const int coloredChunk =
+        light.type == LightType::Spot && !frame.lightColor.empty()
+            ? gpu::tyn_min_max_colored_chunk(
+                  static_cast<int>(frame.shadowMaps[0].depth.extent.width),
+                  static_cast<int>(std::max(frame.lightColor.extent.width, frame.lightColor.extent.height)))
+            : 1;
+    k.tree = glm::uvec4(static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(topLevel), tree ? 1u : 0u,
+                        static_cast<std::uint32_t>(coloredChunk));
   }
   return k;
 }

@@ -77,11 +77,6 @@ vec3 tyn_local_light_piece(vec3 origin, vec3 view_dir, float a, float b) {
   return sum * 0.5 * h;
 }
 
-// tyn_local_light_piece where the span is not empty.
-vec3 tyn_local_light_span(vec3 origin, vec3 view_dir, float a, float b) {
-  return b > a ? tyn_local_light_piece(origin, view_dir, a, b) : vec3(0.0);
-}
-
 // Roots of A t² + B t + C = 0 without cancellation; 1e30 for a missing root (beyond any ray, and
 // no NaN, which a driver's fast maths may not keep).
 vec2 tyn_quadratic_roots(float A, float B, float C) {
@@ -109,24 +104,34 @@ vec2 tyn_spot_cone_crossings(vec3 origin, vec3 dir, float cos_angle) {
   return vec2(s.x < 1e29 ? t_l + s.x : s.x, s.y < 1e29 ? t_l + s.y : s.y);
 }
 
-// ∫_a^b of a local light's in-scattering, the spot's falloff included: split where the ray crosses
-// the inner and the outer cone, where the smoothstep falloff has its kinks (a quadrature across
-// one is off by up to the whole penumbra), then each smooth piece by tyn_local_light_piece.
-vec3 tyn_local_light_segment(vec3 origin, vec3 view_dir, float a, float b) {
+// Where a local light's integrand has kinks along the ray: a spot's smoothstep falloff at the
+// inner and the outer cone (a quadrature across one is off by up to the whole penumbra), sorted;
+// 1e30 for a cone the ray misses and for a point light. They depend on the ray only, so a march
+// that integrates many parts of one ray computes them once.
+vec4 tyn_local_light_cuts(vec3 origin, vec3 view_dir) {
+  if (TYN_LIGHT_TYPE != TYN_LIGHT_SPOT) return vec4(1e30);
+  vec4 c = vec4(tyn_spot_cone_crossings(origin, view_dir, frame.light_direction.w),
+                tyn_spot_cone_crossings(origin, view_dir, frame.light_radiance.w));
+  // A sorting network.
+  c = vec4(min(c.x, c.y), max(c.x, c.y), min(c.z, c.w), max(c.z, c.w));
+  c = vec4(min(c.x, c.z), min(c.y, c.w), max(c.x, c.z), max(c.y, c.w));  // (lowest, ?, ?, highest)
+  return vec4(c.x, min(c.y, c.z), max(c.y, c.z), c.w);
+}
+
+// ∫_a^b of a local light's in-scattering, the spot's falloff included: cut at the ray's kinks
+// (`cuts`, tyn_local_light_cuts), each smooth span by tyn_local_light_piece. Only the spans that
+// [a, b] overlaps are visited, one when no kink falls inside it: a march's short parts seldom
+// hold one, and a CPU driver runs a branch for all lanes when any takes it, so five spans tested
+// one by one cost five quadratures per part (stained-glass, lavapipe: see docs/EPIPOLAR.md).
+vec3 tyn_local_light_segment_cut(vec3 origin, vec3 view_dir, vec4 cuts, float a, float b) {
   vec3 sum = vec3(0.0);
-  if (TYN_LIGHT_TYPE == TYN_LIGHT_SPOT) {
-    vec2 outer = tyn_spot_cone_crossings(origin, view_dir, frame.light_direction.w);
-    vec2 inner = tyn_spot_cone_crossings(origin, view_dir, frame.light_radiance.w);
-    // Missed cones (1e30) are clamped away to b; a sorting network orders the four cuts.
-    vec4 c = clamp(vec4(outer, inner), vec4(a), vec4(max(a, b)));
-    c = vec4(min(c.x, c.y), max(c.x, c.y), min(c.z, c.w), max(c.z, c.w));
-    c = vec4(min(c.x, c.z), min(c.y, c.w), max(c.x, c.z), max(c.y, c.w));  // (lowest, ?, ?, highest)
-    c = vec4(c.x, min(c.y, c.z), max(c.y, c.z), c.w);
-    sum = tyn_local_light_span(origin, view_dir, a, c.x) + tyn_local_light_span(origin, view_dir, c.x, c.y) +
-          tyn_local_light_span(origin, view_dir, c.y, c.z) + tyn_local_light_span(origin, view_dir, c.z, c.w) +
-          tyn_local_light_span(origin, view_dir, c.w, b);
-  } else {
-    sum = tyn_local_light_span(origin, view_dir, a, b);
+  float lo = a;
+  // At most the four kinks split [a, b]: five spans.
+  for (int span = 0; span < 5 && lo < b; ++span) {
+    vec4 ahead = mix(vec4(b), cuts, greaterThan(cuts, vec4(lo)));
+    float hi = min(min(min(ahead.x, ahead.y), min(ahead.z, ahead.w)), b);
+    sum += tyn_local_light_piece(origin, view_dir, lo, hi);
+    lo = hi;
   }
   return sum;
 }

@@ -48,7 +48,8 @@ struct EpipolarConstants {
   uvec4 tree;        // x: 1D samples per slice L (a power of two ≥ the shadow-map size), 0 when
                      //    the marched samples use the Reference's walk instead (point lights);
                      // y: highest tree level the march may use (yusov2013's maximum step);
-                     // z: 1 = march along the min/max tree, 0 = the plain march (every cell)
+                     // z: 1 = march along the min/max tree, 0 = the plain march (every cell);
+                     // w: a coloured march's chunk in cells (tyn_min_max_add_colored)
   vec4 arc;          // xy: the border arc the slices are spread over, (start, length) in perimeter
                      //     pixels (epipolar_geometry.h "Slice arc"; length ≥ P: the whole border);
                      // zw: unused

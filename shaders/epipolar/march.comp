@@ -36,10 +36,12 @@ vec4 g_u_of_t;  // (a0, a1, p, q)
 #define TYN_SCATTERING_LUT_FRAME
 #include "epipolar/scattering_lut.h"
 
-// A spot light's medium, ray and cone for the table (hoisted out of the march).
+// A spot light's medium, ray and cone for the table, and the ray's kinks for the coloured
+// quadrature (hoisted out of the march).
 TynMedium g_medium;
 TynLightRay g_light_ray;
 TynSpotCone g_cone;
+vec4 g_cuts;
 
 float tyn_march_t_of_u(float u) {
   return (g_u_of_t.x - u * g_u_of_t.z) / (u * g_u_of_t.w - g_u_of_t.y);
@@ -53,7 +55,7 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
   float t_b = tyn_march_t_of_u(u_b);
   float a = max(min(t_a, t_b), 0.0);
   float b = max(t_a, t_b);
-  if (TYN_MARCH_LIGHT_COLOR) return tyn_local_light_segment(g_ray_origin, g_ray_direction, a, b);
+  if (TYN_MARCH_LIGHT_COLOR) return tyn_local_light_segment_cut(g_ray_origin, g_ray_direction, g_cuts, a, b);
   return frame.light_radiance.rgb * tyn_spot_segment(g_medium, g_light_ray, g_cone, a, b);
 }
 
@@ -95,6 +97,7 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
     g_light_ray = tyn_light_ray(origin, dir, frame.light_position.xyz);
     g_cone = tyn_spot_cone_from_frame(g_light_ray, dir);
   }
+  if (TYN_MARCH_LIGHT_COLOR && TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) g_cuts = tyn_local_light_cuts(origin, dir);
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
   vec3 unshadowed = vec3(0.0);
   if (directional && part == 0u) {
@@ -109,10 +112,11 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
     // tyn_part_begin/end (reference_march.glsl): one part is exactly the whole range.
     float part_a = tyn_part_begin(range.x, range.y, part, TYN_MARCH_PARTS);
     float part_b = tyn_part_end(range.x, range.y, part, TYN_MARCH_PARTS);
+    int colored_chunk = TYN_MARCH_LIGHT_COLOR ? int(epipolar.tree.w) : 0;
     TynMinMaxMarch march =
         epipolar.tree.z != 0u
-            ? tyn_min_max_march_tree_range(sample_count, int(epipolar.tree.y), sr.ray, TYN_MARCH_LIGHT_COLOR, part_a, part_b)
-            : tyn_min_max_march_plain_range(sample_count, sr.ray, TYN_MARCH_LIGHT_COLOR, part_a, part_b);
+            ? tyn_min_max_march_tree_range(sample_count, int(epipolar.tree.y), sr.ray, colored_chunk, part_a, part_b)
+            : tyn_min_max_march_plain_range(sample_count, sr.ray, colored_chunk, part_a, part_b);
     lit = march.lit_integral;
   }
   if (!directional) return lit;

@@ -56,7 +56,7 @@
 //   TYN_MIN_MAX_INTEGRATE(ray, a, b) optional, vec3: ∫ over the lit part u ∈ [a, b]; defaults to the
 //                                    directional closed form (a spot light plugs its LUT in here)
 //   TYN_MIN_MAX_COLOR(u)             optional, vec3: the light's colour at 1D position u (coloured
-//                                    shafts, see `colored` below); defaults to white
+//                                    shafts, tyn_min_max_add_colored); defaults to white
 // Only the functions whose accessors are defined are compiled. Example (march pass):
 //   #define TYN_MIN_MAX_FETCH(level, index) texelFetch(min_max_tree,
 //       ivec2(tyn_min_max_level_offset(L, level) + (index), slice), 0).xy     (on one line)
@@ -294,20 +294,49 @@ TYN_FUNC void tyn_min_max_add_lit(TYN_INOUT(TynMinMaxLitSpan) span, TynMinMaxRay
   span.end = part.y;
 }
 
-// Coloured shafts (yusov2013 "Colored Light Shafts"): with a light-colour texture a long lit
-// section cannot be integrated in one step, the colour varies along it, so each cell's lit part is
-// integrated on its own, times the colour at its middle (the fine step); only shadowed sections are
-// skipped whole. Nothing is merged, so the plain and the tree march still add the same terms.
-TYN_MIN_MAX_TEMPLATE
-TYN_FUNC void tyn_min_max_add_colored(TYN_MIN_MAX_ACCESS TYN_INOUT(TynMinMaxLitSpan) span, TynMinMaxRay ray,
-                                      vec2 part) {
-  if (part.y <= part.x) return;
-  span.integral += TYN_MIN_MAX_COLOR(0.5f * (part.x + part.y)) * TYN_MIN_MAX_INTEGRATE(ray, part.x, part.y);
-}
-
 TYN_FUNC vec3 tyn_min_max_close(TynMinMaxLitSpan span, TynMinMaxRay ray) {
   return span.end > span.begin ? span.integral + TYN_MIN_MAX_INTEGRATE(ray, span.begin, span.end)
                                : span.integral;
+}
+
+// Coloured shafts (yusov2013 "Colored Light Shafts"): with a light-colour texture a long lit
+// section cannot be integrated in one step, the colour varies along it, so lit parts are merged
+// only within a chunk of `chunk` cells (a power of two) and each merged section is integrated on
+// its own, times the colour at its middle. With one cell per chunk that is yusov2013's fine step,
+// which a directional light's closed form needs (it takes one colour per section). A local light's
+// quadrature takes the colour at each node (TYN_MIN_MAX_COLOR is white then), so its chunk may
+// span a light-colour texel (tyn_min_max_colored_chunk). Both marches close sections at the same
+// chunk boundaries and gaps, so they still add the same terms.
+TYN_MIN_MAX_TEMPLATE
+TYN_FUNC vec3 tyn_min_max_colored_integral(TYN_MIN_MAX_ACCESS TynMinMaxRay ray, float a, float b) {
+  return TYN_MIN_MAX_COLOR(0.5f * (a + b)) * TYN_MIN_MAX_INTEGRATE(ray, a, b);
+}
+
+TYN_MIN_MAX_TEMPLATE
+TYN_FUNC void tyn_min_max_add_colored(TYN_MIN_MAX_ACCESS TYN_INOUT(TynMinMaxLitSpan) span, TynMinMaxRay ray,
+                                      vec2 part, float chunk) {
+  if (part.y <= part.x) return;
+  // Parts never straddle a chunk boundary (cells and chunks are aligned; u is an integer there).
+  if (part.x != span.end || part.x == floor(part.x / chunk) * chunk) {
+    if (span.end > span.begin) span.integral += tyn_min_max_colored_integral(TYN_MIN_MAX_PASS ray, span.begin, span.end);
+    span.begin = part.x;
+  }
+  span.end = part.y;
+}
+
+TYN_MIN_MAX_TEMPLATE
+TYN_FUNC vec3 tyn_min_max_close_colored(TYN_MIN_MAX_ACCESS TynMinMaxLitSpan span, TynMinMaxRay ray) {
+  return span.end > span.begin ? span.integral + tyn_min_max_colored_integral(TYN_MIN_MAX_PASS ray, span.begin, span.end)
+                               : span.integral;
+}
+
+// The chunk of a coloured local light's march, in cells: the largest power of two that spans at
+// most one light-colour texel along either axis (a cell spans at most one shadow-map texel along
+// either, tyn_min_max_sample_count), so that the colour, bilinear, bends at most once per axis
+// inside a chunk and the quadrature's four nodes follow it. Longer chunks were measured to lose
+// accuracy, shorter ones only time (docs/EPIPOLAR.md "Coloured shafts").
+TYN_FUNC int tyn_min_max_colored_chunk(int shadow_size, int color_size) {
+  return 1 << findMSB(max(shadow_size / max(color_size, 1), 1));
 }
 
 // The part of the ray the marches cover: [u_begin, u_end] ∩ [0, L] as (a, b), a ≤ b.
@@ -332,12 +361,12 @@ struct TynMinMaxMarch {
 };
 
 #if defined(TYN_MIN_MAX_SAMPLE)
-// The plain march: every cell of [u_begin, u_end] ∩ [0, L] against its sample. `colored`: see
-// tyn_min_max_add_colored.
+// The plain march: every cell of [u_begin, u_end] ∩ [0, L] against its sample. `colored_chunk`: 0
+// without a light-colour texture, else the chunk of tyn_min_max_add_colored.
 // tyn_min_max_march_plain over [a, b] ⊆ [0, L] only (one part of a ray several threads share).
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain_range(TYN_MIN_MAX_ACCESS int sample_count, TynMinMaxRay ray,
-                                                      bool colored, float a, float b) {
+                                                      int colored_chunk, float a, float b) {
   TynMinMaxLitSpan span = tyn_min_max_lit_span(a);
   TynMinMaxMarch result;
   result.steps = 0;
@@ -348,21 +377,22 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain_range(TYN_MIN_MAX_ACCESS int sam
     ++result.steps;
     vec2 part = tyn_min_max_lit_part(ca, cb, tyn_min_max_depth_at(ray, ca), tyn_min_max_depth_at(ray, cb),
                                      TYN_MIN_MAX_SAMPLE(k));
-    if (colored) {
-      tyn_min_max_add_colored(TYN_MIN_MAX_PASS span, ray, part);
+    if (colored_chunk > 0) {
+      tyn_min_max_add_colored(TYN_MIN_MAX_PASS span, ray, part, float(colored_chunk));
     } else {
       tyn_min_max_add_lit(span, ray, part);
     }
   }
-  result.lit_integral = tyn_min_max_close(span, ray);
+  result.lit_integral = colored_chunk > 0 ? tyn_min_max_close_colored(TYN_MIN_MAX_PASS span, ray)
+                                          : tyn_min_max_close(span, ray);
   return result;
 }
 
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_count, TynMinMaxRay ray,
-                                                bool colored) {
+                                                int colored_chunk) {
   vec2 range = tyn_min_max_range(sample_count, ray);
-  return tyn_min_max_march_plain_range(TYN_MIN_MAX_PASS sample_count, ray, colored, range.x, range.y);
+  return tyn_min_max_march_plain_range(TYN_MIN_MAX_PASS sample_count, ray, colored_chunk, range.x, range.y);
 }
 #endif
 
@@ -375,14 +405,16 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_plain(TYN_MIN_MAX_ACCESS int sample_co
 // starts at `top_level` (−1: no tree, the plain march; levels above the tree's are clamped), so
 // no step exceeds 2^(top_level+1) samples: yusov2013's maximum step.
 // Every node is tested at most once and the tree has < 2L nodes, which bounds the loop.
-// `colored`: a lit node's cells are walked one by one (tyn_min_max_add_colored, at most L more
-// iterations); only shadowed nodes are skipped whole.
+// `colored_chunk` (tyn_min_max_add_colored; 0: no light-colour texture): a lit node larger than a
+// chunk is walked chunk by chunk (at most L more iterations); only shadowed nodes are skipped whole.
 // Over [a, b] ⊆ [0, L] only: one part of a ray several threads share (march.comp); the parts'
 // sections end at the part boundaries, so their sum differs from one march by rounding alone.
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree_range(TYN_MIN_MAX_ACCESS int sample_count, int top_level,
-                                                     TynMinMaxRay ray, bool colored, float a, float b) {
+                                                     TynMinMaxRay ray, int colored_chunk, float a, float b) {
   int highest = min(top_level, tyn_min_max_highest_level(sample_count));
+  bool colored = colored_chunk > 0;
+  int colored_level = colored ? findMSB(colored_chunk) - 1 : -1;  // the level whose nodes are chunks
   TynMinMaxLitSpan span = tyn_min_max_lit_span(a);
   TynMinMaxMarch result;
   result.steps = 0;
@@ -390,7 +422,7 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree_range(TYN_MIN_MAX_ACCESS int samp
   float u = a;
   int k = min(int(floor(a)), sample_count - 1);
   int level = highest;
-  // Coloured marches walk the cells of a lit node one per iteration: cells before lit_until are
+  // Coloured marches walk the chunks of a lit node one per iteration: chunks before lit_until are
   // known to be lit whole (the node's minimum bounds their samples). One loop without `continue`
   // or an inner cell loop, and one call site of the integral after the branches: lavapipe's JIT
   // miscompiled the other forms of this march (its coloured spot-light results differed from the
@@ -408,16 +440,18 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree_range(TYN_MIN_MAX_ACCESS int samp
     ++result.steps;
     bool advance = true;
     vec2 part = vec2(u);  // empty: a skipped or descended node adds nothing
-    if (level < 0) {
-      part = k < lit_until ? vec2(u, sb) : tyn_min_max_lit_part(u, sb, za, zb, TYN_MIN_MAX_SAMPLE(k));
+    if (k < lit_until) {
+      part = vec2(u, sb);  // a chunk (or cell) of a lit node being walked
+    } else if (level < 0) {
+      part = tyn_min_max_lit_part(u, sb, za, zb, TYN_MIN_MAX_SAMPLE(k));
     } else {
       int c = tyn_min_max_classify(za, zb, TYN_MIN_MAX_FETCH(level, node));
       if (c == TYN_MIN_MAX_MIXED) {
         --level;
         advance = false;
-      } else if (c == TYN_MIN_MAX_LIT && colored) {
+      } else if (c == TYN_MIN_MAX_LIT && colored && level > colored_level) {
         lit_until = node_end;
-        level = -1;
+        level = colored_level;
         advance = false;
       } else if (c == TYN_MIN_MAX_LIT) {
         part = vec2(u, sb);
@@ -425,26 +459,26 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree_range(TYN_MIN_MAX_ACCESS int samp
     }
     // One call site for the integral, after the branches (see above).
     if (colored) {
-      tyn_min_max_add_colored(TYN_MIN_MAX_PASS span, ray, part);
+      tyn_min_max_add_colored(TYN_MIN_MAX_PASS span, ray, part, float(colored_chunk));
     } else {
       tyn_min_max_add_lit(span, ray, part);
     }
     if (advance) {
       u = sb;
       k = node_end;
-      // Not inside a lit node whose cells are being walked.
+      // Not inside a lit node whose chunks are being walked.
       if (k >= lit_until) level = tyn_min_max_climb(level, highest, k);
     }
   }
-  result.lit_integral = tyn_min_max_close(span, ray);
+  result.lit_integral = colored ? tyn_min_max_close_colored(TYN_MIN_MAX_PASS span, ray) : tyn_min_max_close(span, ray);
   return result;
 }
 
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree(TYN_MIN_MAX_ACCESS int sample_count, int top_level,
-                                               TynMinMaxRay ray, bool colored) {
+                                               TynMinMaxRay ray, int colored_chunk) {
   vec2 range = tyn_min_max_range(sample_count, ray);
-  return tyn_min_max_march_tree_range(TYN_MIN_MAX_PASS sample_count, top_level, ray, colored, range.x, range.y);
+  return tyn_min_max_march_tree_range(TYN_MIN_MAX_PASS sample_count, top_level, ray, colored_chunk, range.x, range.y);
 }
 #endif
 

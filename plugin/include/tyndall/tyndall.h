@@ -362,8 +362,9 @@ struct FrameDesc {
   /// reaching a point is multiplied by its linear RGB there (bilinear, clamped to the edge; outside
   /// the square the light is unfiltered). Directional and spot lights (a point light fails with
   /// UnsupportedFeature). Any colour format with SAMPLED_IMAGE_FILTER_LINEAR (an _SRGB format is
-  /// decoded to linear), usage SAMPLED, any size. The techniques walk lit sections at the fine step
-  /// (one shadow-map texel) where it is set, so it costs more.
+  /// decoded to linear), usage SAMPLED, any size. The techniques walk lit sections in short steps
+  /// where it is set (one shadow-map texel for a directional light, one colour texel for a spot
+  /// light), so it costs more.
   ImageRef lightColor;
 
   Profile profile = Profile::Balanced;

@@ -269,7 +269,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarMarchParts,
                                            // the bilinear colour inside it puts off by up to a few
                                            // percent of that section; the parts cut some sections
                                            // elsewhere. (Chunks against cell-by-cell sections,
-                                           // 640x360 Balanced: 0.12% relative RMSE, the error
+                                           // 640x360, default settings: 0.12% relative RMSE, the error
                                            // against the Reference 3.403% against 3.406%.)
                                            MarchPartsCase{"stained-glass", true, 1e-3, 5e-2}),
                          [](const auto& test_param) {

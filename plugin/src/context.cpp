@@ -64,6 +64,9 @@ constexpr VkImageUsageFlags kTargetUsage =
 // L_in and T are kept in full float: the Reference is the validation path and the AOVs are
 // compared against double-precision references.
 constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// The largest point-light map whose texel walk stays within lavapipe's loop budget (measured,
+// docs/REFERENCE.md "Loop budget"); the frame's note says so above it on a CPU driver.
+constexpr std::uint32_t kCpuDriverPointLightMapLimit = 4096;
 
 // Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
 // the shaders would run (shaders/epipolar/epipolar_geometry.h).
@@ -422,6 +425,16 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     // Epipolar lines need a screen at least two pixels wide and high (a design fallback).
     technique = Technique::Reference;
     note += "; output smaller than 2x2: Reference instead of epipolar";
+  }
+  if (gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && frame.light.type == LightType::Point &&
+      technique != Technique::Prefiltered && !frame.shadowMaps.empty() &&
+      frame.shadowMaps[0].depth.extent.width > kCpuDriverPointLightMapLimit) {
+    // lavapipe ends every loop of a shader invocation once its loops together have run 65,535
+    // iterations (docs/REFERENCE.md "Loop budget"). A point light's texel walk takes about two
+    // per texel step and a ray passing the light crosses up to six times the map's side: within
+    // the budget up to 4096² (measured), not beyond. Said, not hidden: the result is wrong there.
+    note += "; CPU driver: a point light's texel walk with maps above 4096^2 can exceed lavapipe's 65,535 loop "
+            "iterations per invocation and come out too dark";
   }
   if (setup.attenuates) {
     if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);

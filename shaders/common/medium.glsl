@@ -9,15 +9,22 @@
 // The frame's light type (TYN_LIGHT_*), a specialisation constant: each pass that integrates light
 // is built once per light type, so that it carries only its light's code. On a CPU driver
 // (lavapipe) a uniform branch still costs both sides, and the spot's extra code in the same
-// pipeline was measured to change a point light's result (a miscompile of unexecuted code).
+// pipeline was measured to change a point light's result: taken then for a miscompile of
+// unexecuted code, it fits lavapipe's loop budget, which loops under a branch not taken spend too
+// (docs/REFERENCE.md "Loop budget on lavapipe").
 layout(constant_id = 7) const uint TYN_LIGHT_TYPE = TYN_LIGHT_DIRECTIONAL;
 
-// Σ_components σ_s · p(cos θ): the scattered fraction towards the camera, per channel.
+// Σ_components σ_s · p(cos θ): the scattered fraction towards the camera, per channel. The loop's
+// bound is a constant so that the compiler unrolls it: on lavapipe all loop iterations of one
+// invocation share a budget of 65,535 (docs/REFERENCE.md "Loop budget on lavapipe"), and this runs
+// at every quadrature node of a texel walk.
 vec3 tyn_phase_weighted_scattering(float cos_theta) {
   vec3 sum = vec3(0.0);
-  for (uint c = 0u; c < frame.counts.y; ++c) {
-    sum += frame.scattering[c].rgb *
-           tyn_phase(frame.phase_type[c].x, frame.scattering[c].w, cos_theta);
+  for (uint c = 0u; c < TYN_MAX_MEDIUM_COMPONENTS; ++c) {
+    if (c < frame.counts.y) {
+      sum += frame.scattering[c].rgb *
+             tyn_phase(frame.phase_type[c].x, frame.scattering[c].w, cos_theta);
+    }
   }
   return sum;
 }
@@ -64,15 +71,18 @@ vec3 tyn_local_light_piece(vec3 origin, vec3 view_dir, float a, float b) {
   float d_near = max(length(origin + t_closest * view_dir - frame.light_position.xyz), 1e-4);
   int pieces = int(clamp(ceil((b - a) / (0.5 * d_near)), 1.0, 64.0));
   float h = (b - a) / float(pieces);
+  float d0 = 0.5 * h * x0;
+  float d1 = 0.5 * h * x1;
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < pieces; ++i) {
-    float mid = a + (float(i) + 0.5) * h;
-    float d0 = 0.5 * h * x0;
-    float d1 = 0.5 * h * x1;
+  float mid = a + 0.5 * h;
+  // The exit test at the end: one iteration of lavapipe's loop budget per piece (above), not two.
+  for (int i = 0;;) {
     sum += w0 * (tyn_local_light_integrand(origin, view_dir, mid - d0) +
                  tyn_local_light_integrand(origin, view_dir, mid + d0));
     sum += w1 * (tyn_local_light_integrand(origin, view_dir, mid - d1) +
                  tyn_local_light_integrand(origin, view_dir, mid + d1));
+    if (++i >= pieces) break;
+    mid = a + (float(i) + 0.5) * h;
   }
   return sum * 0.5 * h;
 }

@@ -80,7 +80,9 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   vec3 sum = vec3(0.0);
   float t = t0;
   // Every step crosses one texel edge, so 2·size steps cross the whole map; the margin covers
-  // rounding at the start.
+  // rounding at the start. Each step also spends lavapipe's loop budget, shared by every loop of
+  // the invocation (docs/REFERENCE.md "Loop budget on lavapipe"): a loop inside the step, even one
+  // that only a branch not taken holds, costs at least one iteration per step.
   int max_steps = 2 * size + 8;
   for (int i = 0; i < max_steps && t < t1; ++i) {
     float tx = step_dir.x == 0 ? TYN_INFINITY

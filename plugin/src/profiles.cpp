@@ -24,17 +24,17 @@ constexpr EpipolarSettings epipolarSettings(std::uint32_t slices, std::uint32_t 
 
 constexpr std::array<ProfileChoice, 5> kProfileTable{{
     {Profile::Reference, Technique::Reference, "profile table: Reference -> brute force", {}},
-    {Profile::High, Technique::Epipolar, "profile table: High -> epipolar, 1024 slices x 512 samples",
-     epipolarSettings(1024, 512, 16, 0.15f)},
-    {Profile::Balanced, Technique::Epipolar, "profile table: Balanced -> epipolar, 512 slices x 256 samples",
+    {Profile::High, Technique::Epipolar, "profile table: High -> epipolar, 512 slices x 256 samples",
      epipolarSettings(512, 256, 16, 0.15f)},
+    {Profile::Balanced, Technique::Epipolar, "profile table: Balanced -> epipolar, 256 slices x 256 samples",
+     epipolarSettings(256, 256, 16, 0.15f)},
     {Profile::Performance, Technique::Epipolar,
      "profile table: Performance -> epipolar, 256 slices x 256 samples (the prefiltered technique misses its accuracy bars: not chosen)",
      epipolarSettings(256, 256, 16, 0.2f)},
     // Never looked up for a frame: the context resolves Auto to one of the rows above
     // (auto_profile.h). Kept so that every Profile has a row.
     {Profile::Auto, Technique::Epipolar, "profile table: Auto -> Balanced's settings",
-     epipolarSettings(512, 256, 16, 0.15f)},
+     epipolarSettings(256, 256, 16, 0.15f)},
 }};
 
 }  // namespace

@@ -427,7 +427,9 @@ TYN_FUNC TynMinMaxMarch tyn_min_max_march_tree_range(TYN_MIN_MAX_ACCESS int samp
   // or an inner cell loop, and one call site of the integral after the branches: lavapipe's JIT
   // miscompiled the other forms of this march (its coloured spot-light results differed from the
   // plain march's, by 1.7% relative RMSE on stained-glass with High's settings and by 140% with
-  // max-tree-step=2, while the same march compiled as C++ agrees at every maximum step).
+  // max-tree-step=2, while the same march compiled as C++ agrees at every maximum step). Most
+  // likely lavapipe's loop budget rather than a miscompile (docs/REFERENCE.md "Loop budget on
+  // lavapipe"): each call site's quadrature loops cost budget at every step, taken or not.
   int lit_until = -1;
   int max_iterations = 3 * sample_count + highest + 2;
   for (int i = 0; i < max_iterations && u < b; ++i) {

@@ -263,13 +263,18 @@ TYN_FUNC float tyn_scattering_lut_phase(uint type, float g, float cos_theta, flo
   return 3.0f / (8.0f * TYN_PI * (2.0f + g * g)) * (1.0f + cos_theta * cos_theta) * lobe;
 }
 
-// P(θ) = Σ_components σ_s · p(θ), per channel, from cos θ, 1 − cos θ and 1 + cos θ.
+// P(θ) = Σ_components σ_s · p(θ), per channel, from cos θ, 1 − cos θ and 1 + cos θ. A constant
+// bound, unrolled: the table's build calls this at each of a row's 5415 sub-steps, and on lavapipe
+// every loop iteration of an invocation counts against one budget of 65,535 (docs/REFERENCE.md
+// "Loop budget on lavapipe").
 TYN_FUNC vec3 tyn_medium_phase_scattering_precise(TynMedium m, float cos_theta, float one_minus_cos,
                                                   float one_plus_cos) {
   vec3 sum = vec3(0.0f);
-  for (uint c = 0u; c < m.components; ++c) {
-    sum += vec3(m.scattering[c]) *
-           tyn_scattering_lut_phase(m.phase_type[c], m.scattering[c].w, cos_theta, one_minus_cos, one_plus_cos);
+  for (uint c = 0u; c < TYN_MAX_MEDIUM_COMPONENTS; ++c) {
+    if (c < m.components) {
+      sum += vec3(m.scattering[c]) *
+             tyn_scattering_lut_phase(m.phase_type[c], m.scattering[c].w, cos_theta, one_minus_cos, one_plus_cos);
+    }
   }
   return sum;
 }

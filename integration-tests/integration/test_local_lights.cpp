@@ -2,7 +2,8 @@
 // (DESIGN.md) in a scene whose only occluder is the ground, which shadows nothing above it. With
 // 4096² maps too: a ray passing the light crosses thousands of texels in each map, and on lavapipe
 // the loops of one shader invocation share 65,535 iterations in all (docs/REFERENCE.md "Loop
-// budget"); when the walk spent more than that, the rays near the light came out too dark.
+// budget on lavapipe"); when the walk spent more than that, the rays near the light came out too
+// dark.
 #include <cmath>
 
 #include <gtest/gtest.h>

@@ -65,7 +65,7 @@ constexpr VkImageUsageFlags kTargetUsage =
 // compared against double-precision references.
 constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // The largest point-light map whose texel walk stays within lavapipe's loop budget (measured,
-// docs/REFERENCE.md "Loop budget"); the frame's note says so above it on a CPU driver.
+// docs/REFERENCE.md "Loop budget on lavapipe"); the frame's note says so above it on a CPU driver.
 constexpr std::uint32_t kCpuDriverPointLightMapLimit = 4096;
 
 // Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
@@ -430,11 +430,11 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
       technique != Technique::Prefiltered && !frame.shadowMaps.empty() &&
       frame.shadowMaps[0].depth.extent.width > kCpuDriverPointLightMapLimit) {
     // lavapipe ends every loop of a shader invocation once its loops together have run 65,535
-    // iterations (docs/REFERENCE.md "Loop budget"). A point light's texel walk takes about two
+    // iterations (docs/REFERENCE.md "Loop budget on lavapipe"). A point light's texel walk takes about two
     // per texel step and a ray passing the light crosses up to six times the map's side: within
     // the budget up to 4096² (measured), not beyond. Said, not hidden: the result is wrong there.
-    note += "; CPU driver: a point light's texel walk with maps above 4096^2 can exceed lavapipe's 65,535 loop "
-            "iterations per invocation and come out too dark";
+    note += "; CPU driver: a point light's texel walk with maps above " + std::to_string(kCpuDriverPointLightMapLimit) +
+            "^2 can exceed lavapipe's 65,535 loop iterations per invocation and come out too dark";
   }
   if (setup.attenuates) {
     if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);

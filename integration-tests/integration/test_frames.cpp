@@ -1,10 +1,10 @@
 // Frames in flight, timings, resize, back-buffer formats, depth conventions, and the passes a
 // frame records when the medium needs less.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
-#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -261,50 +261,60 @@ TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
   expectNoValidationMessages();
 }
 
-// Profile::Auto against the plugin's own timestamps: budgets that force each profile. The profiles'
-// times are measured first in the same context; the middle budget lies between Balanced's and
-// High's, so that Auto must settle on Balanced. One context throughout (Auto keeps what it measured
-// when the budget changes, as in an engine).
+// Profile::Auto against the plugin's own timestamps: budgets that force each profile. One context
+// throughout (Auto keeps what it measured when the budget changes, as in an engine). An unbounded
+// budget must climb to High and a budget no frame fits must end on Performance; on the way down Auto
+// measures High and Balanced itself, and the third budget lies between those two estimates, so that
+// Auto must settle on Balanced. The middle budget comes from Auto's own estimates, not from separate
+// runs: lavapipe's frame times drift by 20-40% between runs on a shared machine, and the spec is
+// the most accurate profile whose time *as Auto measured it* fits.
 TEST(Profiles, AutoFitsTheBudget) {
   // pillars at 160×90 with a 4096² map: the min/max trees and the march dominate, and High has
-  // twice Balanced's slices (1.9-2.1x the time on lavapipe; at 320×180 with a 2048² map the costs
-  // per pixel left 1.45-1.6x, too close for the middle budget below).
+  // twice Balanced's slices (1.6-2.5x the time on lavapipe; at 320×180 with a 2048² map the costs
+  // per pixel leave 1.45-1.6x).
   const host::Scene scene = loadTestScene("pillars");
   samples::RenderOptions o = smallOptions(160, 90);
   o.shadowMapSize = 4096;
-  o.frames = 9;
-  auto medianTotal = [](const samples::RenderResult& r) {
-    std::vector<double> totals;
-    for (std::size_t i = 2; i < r.timings.size(); ++i) totals.push_back(r.timings[i].totalMilliseconds);
-    std::sort(totals.begin(), totals.end());
-    return totals.empty() ? 0.0 : totals[totals.size() / 2];
-  };
-  std::map<Profile, double> ms;
-  for (Profile p : {Profile::High, Profile::Balanced}) {
+  // Each profile's pipelines run once first: lavapipe builds a shader's machine code at its first
+  // dispatch, inside the GPU timestamps, and Auto's first Balanced frames would carry that cost.
+  o.frames = 3;
+  for (Profile p : {Profile::High, Profile::Balanced, Profile::Performance}) {
     o.profile = p;
-    ms[p] = medianTotal(renderWithSharedContext(scene, o));
-    std::printf("[ auto ] %s: %.2f ms\n", to_string(p), ms[p]);
+    renderWithSharedContext(scene, o);
   }
-  // The middle budget needs High clearly dearer than Balanced: with the budget below, each time is
-  // sqrt(High / Balanced) from the threshold it must stay on its side of (≥ 22% at 1.5x).
-  ASSERT_GT(ms[Profile::High], 1.5 * ms[Profile::Balanced]);
-  // Auto climbs to a profile measured within 80% of the budget (tyndall.h, Profile::Auto): 80% of
-  // this budget lies between the two times.
-  const double middle = std::sqrt(ms[Profile::High] * ms[Profile::Balanced]) / 0.8;
-
   o.profile = Profile::Auto;
   o.frames = 40;
-  for (const auto& [budget, expected] : {std::pair{1e6, Profile::High}, std::pair{1e-3, Profile::Performance},
-                                         std::pair{middle, Profile::Balanced}}) {
+  const auto ladderIndex = [](Profile p) { return p == Profile::High ? 0 : p == Profile::Balanced ? 1 : 2; };
+  std::array<double, 3> estimates{};
+  auto run = [&](double budget, Profile expected) {
     o.autoBudgetMilliseconds = static_cast<float>(budget);
     const samples::RenderResult r = renderWithSharedContext(scene, o);
-    std::printf("[ auto ] budget %.3g ms -> %s: %s\n", budget, to_string(r.stats.profileUsed),
-                r.stats.techniqueNote.c_str());
+    estimates = r.stats.autoEstimateMilliseconds;
+    std::printf("[ auto ] budget %.3g ms -> %s: %s; estimates high %.3g, balanced %.3g, performance %.3g ms\n",
+                budget, to_string(r.stats.profileUsed), r.stats.techniqueNote.c_str(), estimates[0], estimates[1],
+                estimates[2]);
     EXPECT_EQ(r.stats.requestedProfile, Profile::Auto);
     EXPECT_EQ(r.stats.profileUsed, expected) << "budget " << budget << " ms: " << r.stats.techniqueNote;
     EXPECT_NE(r.stats.techniqueNote.find(std::string("-> ") + to_string(expected)), std::string::npos)
         << r.stats.techniqueNote;
-  }
+    // The profile it runs has been measured under Auto, and the stats say so.
+    EXPECT_GT(estimates[ladderIndex(expected)], 0.0);
+  };
+  run(1e6, Profile::High);
+  run(1e-3, Profile::Performance);
+  const double high = estimates[0];
+  const double balanced = estimates[1];
+  ASSERT_GT(balanced, 0.0) << "Auto passed Balanced on its way down without measuring it";
+  // The middle budget needs High clearly dearer than Balanced. Auto climbs back to a profile it
+  // measured within 80% of the budget (AutoProfile::kClimbShare), and 80% of this budget lies
+  // between the two estimates, so from Performance it must climb to Balanced and no further
+  // whatever the ratio; once there, Balanced's new frames must fit the budget, which is
+  // sqrt(High / Balanced) / 0.8 times its estimate: at least 1.43x with the ratio asserted here.
+  // (Measured 1.6-2.0x in one context on lavapipe; the ratio of the slice counts is 2.)
+  ASSERT_GT(high, 1.3 * balanced);
+  const double middle = std::sqrt(high * balanced) / 0.8;
+  run(middle, Profile::Balanced);
+  EXPECT_LE(estimates[1], middle) << "Balanced, measured again, no longer fits";
   expectNoValidationMessages();
 }
 

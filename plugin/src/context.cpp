@@ -506,6 +506,9 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
       lastTimedFrame = latest->frameIndex;
     }
   }
+  for (std::size_t i = 0; i < AutoProfile::kLadder.size(); ++i) {
+    stats.autoEstimateMilliseconds[i] = autoProfile.estimateMs(AutoProfile::kLadder[i]);
+  }
   stats.deviceMemoryBytes = gpu.allocatedBytes;
   ++stats.frameIndex;
   return {};

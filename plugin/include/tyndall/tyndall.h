@@ -426,6 +426,10 @@ struct Stats {
   /// Device memory the context holds after the last `record` (targets, technique textures and
   /// buffers, spare sets kept for profile switches), in bytes.
   std::uint64_t deviceMemoryBytes = 0;
+  /// Profile::Auto's view of the profiles it chooses between, High, Balanced and Performance in that
+  /// order: the median of each one's last measured frames under Auto in milliseconds, negative
+  /// while unmeasured. It is what Auto compares with the budget (the context's own timestamps).
+  std::array<double, 3> autoEstimateMilliseconds{-1.0, -1.0, -1.0};
 };
 
 // ---------------------------------------------------------------------------------------------

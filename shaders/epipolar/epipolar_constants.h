@@ -7,8 +7,9 @@
 TYN_BEGIN
 
 // Workgroup sizes: one thread per slice, per fixed-up pixel of the debug view, per ray-marching
-// sample; the refinement's threads of one slice. The fix-up itself runs one workgroup of
-// TYN_SPLIT_MARCH_PARTS threads per pixel.
+// sample; the refinement's threads of one slice. The fix-up runs groups of this size too: one
+// thread per pixel, or (on a GPU) one group of TYN_SPLIT_MARCH_PARTS threads per pixel, so the two
+// sizes are equal (epipolar_technique.cpp checks).
 TYN_CONST uint TYN_EPIPOLAR_SLICE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_REFINE_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_FIXUP_GROUP = 64u;

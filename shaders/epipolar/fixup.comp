@@ -1,10 +1,13 @@
 #version 460
 // Fix-up: pixels the unwarp could not interpolate are ray-marched with the Reference's walk (the
 // brute-force path and the fix-up run the same code; a point light's lit sections come from the
-// semi-analytic table instead of quadrature per texel), one workgroup per pixel sharing its ray
-// (reference/split_march.glsl): there are few such pixels, and one thread each would leave a GPU
-// idle while a few long walks finish. fixup_args.comp caps the groups at the dispatch limit, so a
-// group takes every gl_NumWorkGroups.x-th pixel of the list.
+// semi-analytic table instead of quadrature per texel). On a GPU one workgroup walks each pixel's
+// ray together (reference/split_march.glsl): there are few such pixels, and one thread each would
+// leave the GPU idle while a few long walks finish. A CPU driver has no idle lanes to fill and pays
+// for the split (64 partial walks, each finding its start, and the barriers between them): there a
+// directional light's pixels are walked one per thread, as in the Reference (epipolar_technique.cpp,
+// serialFixup, says when). fixup_args.comp sizes the dispatch for either and caps the groups at the
+// dispatch limit, so the groups stride over the rest of the list.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 // A point light's lit sections from the semi-analytic table (reference_march.glsl).
@@ -14,15 +17,29 @@
 #define TYN_SCATTERING_LUT_FRAME
 #include "epipolar/scattering_lut.h"
 
+// One thread per pixel, or the whole workgroup per pixel.
+layout(constant_id = 3) const bool TYN_FIXUP_SERIAL = false;
+
 layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 
+void fix_up(uint index, bool writer, bool serial) {
+  uint packed = fixup_pixels[index];
+  uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);
+  float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
+  TynViewRay ray = tyn_view_ray(pixel, depth);
+  vec3 in_scattering = serial ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
+                              : tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
+  if (writer) imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+}
+
 void main() {
-  for (uint index = gl_WorkGroupID.x; index < fixup_count; index += gl_NumWorkGroups.x) {
-    uint packed = fixup_pixels[index];
-    uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);
-    float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-    TynViewRay ray = tyn_view_ray(pixel, depth);
-    vec3 in_scattering = tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
-    if (gl_LocalInvocationID.x == 0u) imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  if (TYN_FIXUP_SERIAL) {
+    uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    for (uint index = gl_GlobalInvocationID.x; index < fixup_count; index += stride) fix_up(index, true, true);
+  } else {
+    // The whole workgroup walks one pixel: the loop is uniform across it (barriers inside).
+    for (uint index = gl_WorkGroupID.x; index < fixup_count; index += gl_NumWorkGroups.x) {
+      fix_up(index, gl_LocalInvocationID.x == 0u, false);
+    }
   }
 }

@@ -1,14 +1,19 @@
 #version 460
-// Sizes the indirect fix-up dispatch by the number of flagged pixels, one workgroup per pixel up to
-// the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and its debug view loop
-// over the rest): zero groups, and so no work, when the unwarp flagged none.
+// Sizes the indirect fix-up dispatch by the number of flagged pixels: one workgroup per pixel when
+// the fix-up splits each walk over its workgroup, one thread per pixel when it does not
+// (fixup.comp), up to the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and
+// its debug view loop over the rest): zero groups, and so no work, when the unwarp flagged none.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
+
+layout(constant_id = 3) const bool TYN_FIXUP_SERIAL = false;
 
 layout(local_size_x = 1) in;
 
 void main() {
-  fixup_groups[0] = min(fixup_count, TYN_EPIPOLAR_MAX_GROUPS);
+  uint groups = TYN_FIXUP_SERIAL ? (fixup_count + TYN_EPIPOLAR_FIXUP_GROUP - 1u) / TYN_EPIPOLAR_FIXUP_GROUP
+                                      : fixup_count;
+  fixup_groups[0] = min(groups, TYN_EPIPOLAR_MAX_GROUPS);
   fixup_groups[1] = 1u;
   fixup_groups[2] = 1u;
 }

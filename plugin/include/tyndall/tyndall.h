@@ -249,7 +249,8 @@ struct ContextDesc {
   PipelineCreation pipelineCreation = PipelineCreation::AtCreate;  ///< default AtCreate
   /// Threads that share one epipolar sample's ray march: 0 (default) chooses by device, 1 on a CPU
   /// driver (the same work, serially) and 8 on a GPU (a few tens of thousands of marched samples
-  /// do not fill one, docs/EPIPOLAR.md); else a power of two up to 64.
+  /// do not fill one, docs/EPIPOLAR.md); else a power of two up to 64. With 1 the fix-up walks a
+  /// directional light's pixels one per thread too; otherwise each pixel's walk is split over 64.
   std::uint32_t marchThreadsPerSample = 0;
   void* messageUserData = nullptr;                            ///< passed back to `messageCallback`
 };

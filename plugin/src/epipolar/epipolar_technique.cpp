@@ -16,6 +16,22 @@ constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr std::uint32_t kBindings = 17;
 // march.comp's and march_args.comp's TYN_MARCH_PARTS (constant_id 1 is the light-colour switch).
 constexpr std::uint32_t kMarchPartsConstantId = 2;
+// fixup.comp's and fixup_args.comp's TYN_FIXUP_SERIAL.
+constexpr std::uint32_t kFixupSerialConstantId = 3;
+// fixup_args.comp sizes the one-thread-per-pixel dispatch in groups of TYN_EPIPOLAR_FIXUP_GROUP,
+// and fixup.comp's workgroup is the split march's.
+static_assert(gpu::TYN_EPIPOLAR_FIXUP_GROUP == gpu::TYN_SPLIT_MARCH_PARTS);
+
+// Whether the fix-up walks each pixel in one thread (fixup.comp) rather than splitting its walk
+// over a workgroup. Only where the march runs one thread per sample (a CPU driver's default), and
+// only for directional lights: a CPU driver gains nothing from the split and pays each part's setup
+// and the barriers (lavapipe, 640x360, per-pass medians of 3 runs: forest's fix-up 111 -> 80 ms at
+// Balanced, 40 -> 32 at High, pillars' 3.1 -> 2.0), but a local light's walk branches per step
+// (cone, penumbra, table or quadrature, colour), and eight different pixels in one SIMD vector
+// run every branch any of them takes (spot-lamp 19 -> 23 ms, stained-glass 21 -> 31-37 ms).
+bool serialFixup(std::uint32_t marchParts, LightType light) {
+  return marchParts == 1 && light == LightType::Directional;
+}
 // The march list's header: VkDispatchIndirectCommand, then the count, ..., the samples found in
 // shadow and the entries the shadow test read (epipolar_common.glsl's MarchList).
 constexpr VkDeviceSize kMarchHeaderWords = 8;
@@ -135,7 +151,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
 
 Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (commonReady_) return {};
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 15> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 14> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
@@ -146,7 +162,6 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
       {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
       {&interpolatePipeline_, shaders::interpolate_comp()},
       {&unwarpPipeline_, shaders::unwarp_comp()},
-      {&fixupArgsPipeline_, shaders::fixup_args_comp()},
       {&scatteringLutPipeline_, shaders::scattering_lut_comp()},
       {&debugBackgroundPipeline_, shaders::debug_background_comp()},
       {&debugSamplesPipeline_, shaders::debug_samples_comp()},
@@ -160,6 +175,14 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::march_args_comp(), parts, marchArgsPipeline_);
       !o) {
     return o;
+  }
+  for (std::uint32_t serial : {0u, 1u}) {
+    const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> walk{{{kFixupSerialConstantId, serial}}};
+    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::fixup_args_comp(), walk,
+                                              fixupArgsPipelines_[serial]);
+        !o) {
+      return o;
+    }
   }
   commonReady_ = true;
   return {};
@@ -182,7 +205,8 @@ Outcome EpipolarTechnique::ensurePipelines(const Gpu& gpu, LightType light, bool
   }
   if (fixupPipelines_[type] == VK_NULL_HANDLE) {
     compiled = true;
-    const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> constants{{{kLightTypeConstantId, type}}};
+    const std::array<std::pair<std::uint32_t, std::uint32_t>, 2> constants{
+        {{kLightTypeConstantId, type}, {kFixupSerialConstantId, serialFixup(marchParts_, light) ? 1u : 0u}}};
     if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::fixup_comp(), constants,
                                               fixupPipelines_[type]);
         !o) {
@@ -229,7 +253,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
                               marchArgsPipeline_, shadowTestArgsPipeline_, shadowTestPipeline_, refineIntensityPipeline_,
                               interpolatePipeline_, unwarpPipeline_,
-                              fixupArgsPipeline_, scatteringLutPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
+                              fixupArgsPipelines_[0], fixupArgsPipelines_[1], scatteringLutPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
                               debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
@@ -513,7 +537,8 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
   if (bindings.scatters) {
-    pass("epipolar_fixup_args", fixupArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+    pass("epipolar_fixup_args", fixupArgsPipelines_[serialFixup(marchParts_, light) ? 1 : 0],
+         [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
 
     // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
     indirectPass("epipolar_fixup", fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer);

@@ -106,8 +106,9 @@ class EpipolarTechnique {
   std::uint32_t marchParts_ = 1;  ///< march.comp's and march_args.comp's TYN_MARCH_PARTS
   VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;
   VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
-  VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
-  LightPipelines fixupPipelines_{};  // per light type
+  // fixup_args.comp specialised: [0] a workgroup per pixel, [1] a thread per pixel (serialFixup).
+  std::array<VkPipeline, 2> fixupArgsPipelines_{};
+  LightPipelines fixupPipelines_{};  // per light type, each walking as serialFixup says
   VkPipeline scatteringLutPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugBackgroundPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugSamplesPipeline_ = VK_NULL_HANDLE;

@@ -80,16 +80,18 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarScenes,
                          });
 
 // The profiles at 640×360 against the Reference in the same run, on every sample scene (the
-// epipolar issue's bars: relative RMSE of L_in ≤ 3% for High, ≤ 6% for Balanced), with the
-// ray-marched samples far below the pixel count.
-// Renders the scene with the Reference, then High and Balanced, at 640×360, and checks each
+// epipolar issue's bars: relative RMSE of L_in ≤ 3% for High, ≤ 6% for Balanced; Performance
+// twice its goal, ≤ 16%, as in the extremes suite), with the ray-marched samples far below the
+// pixel count.
+// Renders the scene with the Reference, then each profile, at 640×360, and checks each
 // profile's bar and its share of ray-marched samples.
-// `bars` are the relative-RMSE bars of High and Balanced: the issue's, which every sample scene
+// `bars` are the relative-RMSE bars of the profiles: the issue's, which every sample scene
 // meets (stained-glass did not until the slices were spread over the spot cone's wedge only,
 // slice_arc.h: High 7.6% -> 1.78%, Balanced 18% -> 3.41%).
 struct ProfileBars {
   double high = 0.03;
   double balanced = 0.06;
+  double performance = 0.16;
 };
 
 void expectProfilesMatchTheReference(const host::Scene& scene, const std::string& name, ProfileBars bars = {}) {
@@ -101,10 +103,12 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
   o.technique = Technique::None;
   o.frames = 3;  // the sample counts of a frame are read when its slot comes round again
   const double pixels = double(o.width) * o.height;
-  // Balanced marches far fewer samples than pixels everywhere; High spends up to about half the
-  // pixels on a scene of thin occluders (forest: its depth breaks), so its bound is looser.
+  // Balanced and Performance march far fewer samples than pixels everywhere; High spends up to
+  // about half the pixels on a scene of thin occluders (forest: its depth breaks), so its bound is
+  // looser.
   for (const auto& [profile, bar, sampleShare] : {std::tuple{Profile::High, bars.high, 0.6},
-                                                  std::tuple{Profile::Balanced, bars.balanced, 0.25}}) {
+                                                  std::tuple{Profile::Balanced, bars.balanced, 0.25},
+                                                  std::tuple{Profile::Performance, bars.performance, 0.25}}) {
     o.profile = profile;
     const samples::RenderResult r = renderWithAovs(scene, o);
     const ErrorStats s = compareRgb(r.scattering, reference.scattering);
@@ -126,7 +130,7 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
 
 class EpipolarProfiles : public ::testing::TestWithParam<const char*> {};
 
-TEST_P(EpipolarProfiles, HighAndBalancedMatchTheReference) {
+TEST_P(EpipolarProfiles, EachProfileMatchesTheReference) {
   expectProfilesMatchTheReference(loadTestScene(GetParam()), GetParam());
 }
 
@@ -534,8 +538,8 @@ struct EpipoleCase {
 class EpipoleCases : public ::testing::TestWithParam<EpipoleCase> {};
 
 // engelhardt2010/yusov2013's hard cases: the light on screen, at a corner, on an edge, just and
-// far off screen, behind the camera, and exactly on the view axis in front and behind; High and
-// Balanced at 640×360.
+// far off screen, behind the camera, and exactly on the view axis in front and behind; High,
+// Balanced and Performance at 640×360.
 TEST_P(EpipoleCases, MatchTheReference) {
   const EpipoleCase& e = GetParam();
   expectProfilesMatchTheReference(withEpipoleAt(loadTestScene("analytic-mixed"), e.ndc, e.behind, 640, 360),

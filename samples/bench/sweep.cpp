@@ -59,9 +59,11 @@ bool builtInGrid(const std::string& name, std::vector<Configuration>& out, std::
   if (name == "default" || name == "full") {
     // Epipolar: slices set the resolution across shafts, samples along them, the intensity
     // refinement how many extra samples shaft edges get (docs/EPIPOLAR.md); "full" adds a longer
-    // initial step.
-    for (const char* slices : {"256", "512", "1024"}) {
-      for (const char* samples : {"256", "512"}) {
+    // initial step. 128 slices go with 128 or 256 samples (the cheapest corner, for Performance),
+    // the others with 256 or 512.
+    for (const char* slices : {"128", "256", "512", "1024"}) {
+      const bool cheapest = std::string(slices) == "128";
+      for (const char* samples : {cheapest ? "128" : "256", cheapest ? "256" : "512"}) {
         std::vector<const char*> marches{"intensity-refinement=0.2", "intensity-refinement=0.15"};
         if (name == "full") marches.push_back("initial-step=32,intensity-refinement=0.2");
         for (const char* march : marches) {

@@ -7,7 +7,7 @@
 # table). Runs on whatever Vulkan device is present (TYNDALL_DEVICE picks one).
 # Usage: scripts/bench-epipolar.sh [build-dir] (default: build)
 # Environment: SCENES (pillars forest window-room spot-lamp), SIZES (1280x720 1920x1080),
-#   SHADOW_MAPS (2048 4096), PROFILES (high balanced), FRAMES (12), REFERENCE_FRAMES (4).
+#   SHADOW_MAPS (2048 4096), PROFILES (high balanced performance), FRAMES (12), REFERENCE_FRAMES (4).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -34,7 +34,7 @@ for scene in ${SCENES:-pillars forest window-room spot-lamp}; do
       ref="$out/$scene-$size-$map-reference"
       "$render" "samples/scenes/$scene.json" --technique reference --width "$w" --height "$h" \
         --shadow-map-size "$map" --frames "$reference_frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
-      for profile in ${PROFILES:-high balanced}; do
+      for profile in ${PROFILES:-high balanced performance}; do
         run="$out/$scene-$size-$map-$profile"
         "$render" "samples/scenes/$scene.json" --profile "$profile" --width "$w" --height "$h" \
           --shadow-map-size "$map" --frames "$frames" --timings "$run.json" --aov-scattering "$run.exr" >/dev/null

@@ -10,8 +10,8 @@ namespace {
 // samples and intensity refinement against the Reference at 640×360 with 2048² maps), which
 // TradeoffsDocument.AgreesWithTheProfileTable keeps equal to this table: per profile, among the
 // configurations that meet its per-scene bar (High 3%, Balanced 6%, Performance 16%), the most
-// accurate one that meets its speed goal, else the fastest. Every profile runs the epipolar technique: the prefiltered one
-// misses the bars (docs/PREFILTERED.md).
+// accurate one that meets its speed goal, else the fastest. Every profile runs the epipolar
+// technique: the prefiltered one misses the bars (docs/PREFILTERED.md).
 constexpr EpipolarSettings epipolarSettings(std::uint32_t slices, std::uint32_t samples, std::uint32_t initialStep,
                                             float intensityRefinement) {
   EpipolarSettings s;

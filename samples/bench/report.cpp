@@ -469,9 +469,15 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
          "technique runs for directional lights only; its medians are over the directional-light scenes. On a CPU "
          "driver such as lavapipe the GPU time is CPU time: other work on the machine inflates it, unevenly "
          "over a long run, so compare only figures from one quiet run, and a GPU's figures only with a GPU's.\n\n";
+  // The per-scene bars as profileGoals() holds them, so that the text cannot drift from the choice.
+  std::string bars;
+  for (const ProfileGoal& goal : profileGoals()) {
+    if (goal.maxSceneRelativeRmse <= 0.0) continue;
+    bars += std::string(bars.empty() ? "" : ", ") + goal.profile + " " + format("%g%%", 100.0 * goal.maxSceneRelativeRmse);
+  }
   doc += "## The choice\n\n";
   doc += "At " + chosenAt + ", per profile: of the configurations that meet the bar the profile's tests hold "
-         "it to on every scene (High 3%, Balanced 6%, Performance 16% relative RMSE; a scene on which no configuration meets it "
+         "it to on every scene (" + bars + " relative RMSE; a scene on which no configuration meets it "
          "does not count) and the profile's speed goal (median speedup over the Reference; Performance also its "
          "time over the floor), the one with the lowest median relative RMSE over the scenes — or the fastest "
          "if none is fast enough; then whether it meets the error goal. `plugin/src/profiles.cpp` holds this table; "

@@ -47,8 +47,9 @@ struct ProfileGoal {
   double minSpeedup;           ///< 12, 25, 50 (Reference time / time)
   double maxTimeOverFloor;     ///< 4 for Performance, 0: none
   /// The bar the profile's tests hold it to on every scene (the epipolar issue's: High 3%,
-  /// Balanced 6% at 640×360; Performance twice its goal, 16%, as in the extremes suite), 0: none. A scene on which no configuration meets it does not
-  /// decide between them (stained-glass: a documented miss of every configuration).
+  /// Balanced 6% at 640×360; Performance twice its goal, 16%, as in the extremes suite), 0: none.
+  /// A scene on which no configuration meets it does not decide between them (stained-glass: a
+  /// documented miss of every configuration).
   double maxSceneRelativeRmse;
 };
 const std::vector<ProfileGoal>& profileGoals();

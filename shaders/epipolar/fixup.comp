@@ -22,24 +22,25 @@ layout(constant_id = 3) const bool TYN_FIXUP_SERIAL = false;
 
 layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 
-void fix_up(uint index, bool writer, bool serial) {
+// L_in of the listed pixel `index`; `writer`: the thread that stores it.
+void fix_up(uint index, bool writer) {
   uint packed = fixup_pixels[index];
   uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   TynViewRay ray = tyn_view_ray(pixel, depth);
-  vec3 in_scattering = serial ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
-                              : tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
+  vec3 in_scattering = TYN_FIXUP_SERIAL ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
+                                        : tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
   if (writer) imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
 }
 
 void main() {
   if (TYN_FIXUP_SERIAL) {
     uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-    for (uint index = gl_GlobalInvocationID.x; index < fixup_count; index += stride) fix_up(index, true, true);
+    for (uint index = gl_GlobalInvocationID.x; index < fixup_count; index += stride) fix_up(index, true);
   } else {
     // The whole workgroup walks one pixel: the loop is uniform across it (barriers inside).
     for (uint index = gl_WorkGroupID.x; index < fixup_count; index += gl_NumWorkGroups.x) {
-      fix_up(index, gl_LocalInvocationID.x == 0u, false);
+      fix_up(index, gl_LocalInvocationID.x == 0u);
     }
   }
 }

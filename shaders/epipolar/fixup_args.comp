@@ -12,7 +12,7 @@ layout(local_size_x = 1) in;
 
 void main() {
   uint groups = TYN_FIXUP_SERIAL ? (fixup_count + TYN_EPIPOLAR_FIXUP_GROUP - 1u) / TYN_EPIPOLAR_FIXUP_GROUP
-                                      : fixup_count;
+                                 : fixup_count;
   fixup_groups[0] = min(groups, TYN_EPIPOLAR_MAX_GROUPS);
   fixup_groups[1] = 1u;
   fixup_groups[2] = 1u;

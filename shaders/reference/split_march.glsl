@@ -6,8 +6,9 @@
 // 1920×1080: 1.3-8.4 ms for about 0.1% of the pixels, the Reference's whole frame being 5-21 ms).
 // Split, the same walk keeps the GPU busy; the result differs from one thread's walk only by
 // rounding. A CPU driver gains nothing from the split and pays for each part's setup and the
-// barriers: the epipolar fix-up walks a directional light's rays whole there (fixup.comp). Needs the workgroup's size to be TYN_SPLIT_MARCH_PARTS along x and is called by every
-// thread of the workgroup (it synchronises them).
+// barriers: the epipolar fix-up walks a directional light's rays whole there (fixup.comp). Needs
+// the workgroup's size to be TYN_SPLIT_MARCH_PARTS along x and is called by every thread of the
+// workgroup (it synchronises them).
 #ifndef TYNDALL_SPLIT_MARCH_GLSL
 #define TYNDALL_SPLIT_MARCH_GLSL
 

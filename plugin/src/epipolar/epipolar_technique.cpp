@@ -252,8 +252,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
                               marchArgsPipeline_, shadowTestArgsPipeline_, shadowTestPipeline_, refineIntensityPipeline_,
-                              interpolatePipeline_, unwarpPipeline_,
-                              fixupArgsPipelines_[0], fixupArgsPipelines_[1], scatteringLutPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
+                              interpolatePipeline_, unwarpPipeline_, fixupArgsPipelines_[0], fixupArgsPipelines_[1],
+                              scatteringLutPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
                               debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }

@@ -456,7 +456,13 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     epipolarK = epipolarConstants(frame, epipolarSettings, extent, arc);
     note += epipolarMarchNote(epipolarK, epipolarSettings) + sliceArcNote(arc);
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
-    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, stats.frameIndex, desc.maxFramesInFlight);
+    // Only a frame that records the fix-up builds the blocks it walks.
+    const std::uint32_t shadowBlocks =
+        setup.attenuates && setup.scatters && !frame.shadowMaps.empty()
+            ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)
+            : 0;
+    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, shadowBlocks, stats.frameIndex,
+                                     desc.maxFramesInFlight);
         !o) {
       return fail(o);
     }

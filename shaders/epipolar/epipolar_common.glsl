@@ -22,8 +22,12 @@ layout(set = 0, binding = 8, std430) buffer FixupList {
   uint fixup_count;
   uint fixup_pixels[];
 };
-// VkDispatchIndirectCommand for the fix-up pass.
-layout(set = 0, binding = 9, std430) buffer FixupArgs { uint fixup_groups[3]; };
+// VkDispatchIndirectCommand for the fix-up pass, then one for the shadow-map blocks pass, which
+// runs (and the fix-up walks the blocks) only where fixup_args.comp finds it worth its cost.
+layout(set = 0, binding = 9, std430) buffer FixupArgs {
+  uint fixup_groups[3];
+  uint shadow_block_groups[3];
+};
 // Per (sample, slice): the ray-marched samples it is interpolated from, left | right << 16
 // (both equal to the sample itself when it is ray-marched; TYN_EPIPOLAR_NO_SOURCE if invalid).
 layout(set = 0, binding = 10, r32ui) uniform uimage2D interpolation_source;
@@ -55,6 +59,9 @@ layout(set = 0, binding = 15) uniform sampler2D light_color;
 // The spot and point lights' semi-analytic scattering table (epipolar/scattering_lut.h), built by
 // scattering_lut.comp when the medium changes; a 1×1 placeholder before a local light needs it.
 layout(set = 0, binding = 16, rgba32f) uniform image2D scattering_lut;
+// Nearest and farthest depth of shadow map 0 per block of TYN_EPIPOLAR_SHADOW_BLOCK² texels
+// (shadow_blocks.comp), for a directional light's fix-up (block_walk.glsl); 1 × 1 otherwise.
+layout(set = 0, binding = 17, rg32f) uniform image2D shadow_blocks;
 // The debug view (DebugView), bound only for the debug passes.
 layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D debug_image;
 

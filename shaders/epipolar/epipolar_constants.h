@@ -34,6 +34,20 @@ TYN_CONST uint TYN_EPIPOLAR_TREE_GROUP = 128u;
 // lavapipe's 32 KiB) and whose tree fits one texture row (L − 1 texels).
 TYN_CONST uint TYN_EPIPOLAR_TREE_MAX_SAMPLES = 4096u;
 
+// Texels along each side of the fix-up's shadow-map blocks (shadow_blocks.comp, block_walk.glsl),
+// even (the blocks pass gathers 2 × 2 texels), and the blocks pass's workgroup side. 4 against 8
+// on lavapipe, Performance at 640x360 with 2048² maps: forest's fix-up 143 against 171 ms (the
+// plain walk's 153: forest's blocks mostly hold a canopy and the ground below it, and the smaller
+// ones decide more often), fence's 19 against 20 ms (plain 38).
+TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK = 4u;
+TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_GROUP = 8u;
+// The blocks are built when at least one pixel per this many texels of the map's side is fixed up.
+// A walk crosses about a map side of texels and the blocks pass reads side² of them, so the
+// threshold scales with the side. On lavapipe (Performance, 640x360, 2048² map) the pass took 6 ms
+// and the block steps saved about 12 µs per fixed-up pixel on pillars and fence (4 ms for
+// pillars' 300 pixels, 17 ms for fence's 1,400): worth it from about 500 pixels, a side / 4.
+TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS = 4u;
+
 struct EpipolarConstants {
   vec4 epipole;      // homogeneous epipole (tyn_epipole): x, y, w, side
   uvec4 counts;      // x: slices; y: samples per slice; z: 1 = improved sample placement;

@@ -12,7 +12,13 @@
 #include "epipolar/epipolar_common.glsl"
 // A point light's lit sections from the semi-analytic table (reference_march.glsl).
 #define TYN_WALK_LIT_SECTIONS
+// A directional light's map crossed block by block where a block decides all its texels.
+#define TYN_WALK_SHADOW_BLOCKS
 #include "reference/split_march.glsl"
+#include "epipolar/block_walk.glsl"
+
+// Whether this frame built the blocks (fixup_args.comp).
+bool tyn_shadow_blocks_built() { return shadow_block_groups[0] != 0u; }
 #define TYN_SCATTERING_LUT_FETCH(texel) imageLoad(scattering_lut, texel).rgb
 #define TYN_SCATTERING_LUT_FRAME
 #include "epipolar/scattering_lut.h"

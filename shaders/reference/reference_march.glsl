@@ -44,6 +44,32 @@ float tyn_shadow_texel(uint map, ivec2 texel) {
   }
 }
 
+// The lit part [x, y] of the texel segment [t, t_next] of ray `r` in a texel of depth z_texel (empty
+// when y ≤ x): lit where z(t) ≤ z_texel · w(t), i.e. A t ≤ B. A texel at the clear value (1) has no
+// occluder: everything in it is lit, also beyond the map's far plane.
+vec2 tyn_texel_lit_part(TynShadowRay r, float z_texel, float t, float t_next) {
+  vec2 lit = vec2(t, t_next);
+  if (z_texel < 1.0) {
+    float A = r.h1.z - z_texel * r.h1.w;
+    float B = z_texel * r.h0.w - r.h0.z;
+    if (A > 0.0) {
+      lit.y = min(lit.y, B / A);
+    } else if (A < 0.0) {
+      lit.x = max(lit.x, B / A);
+    } else if (B < 0.0) {
+      lit.y = lit.x;
+    }
+  }
+  return lit;
+}
+
+#ifdef TYN_WALK_SHADOW_BLOCKS
+// The epipolar fix-up's walk of a directional light's map where the frame built its blocks
+// (epipolar/block_walk.glsl; the including shader defines both).
+vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1);
+bool tyn_shadow_blocks_built();
+#endif
+
 #ifdef TYN_WALK_LIT_SECTIONS
 // With TYN_WALK_LIT_SECTIONS defined (the epipolar march and fix-up), a point light's lit parts
 // that follow on from one another are merged into lit sections, and each section is integrated in
@@ -94,22 +120,9 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
     float t_next = clamp(min(tx, ty), t, t1);
 
     if (t_next > t) {
-      float z_texel = tyn_shadow_texel(map, texel);
-      // Lit where z(t) ≤ z_texel · w(t), i.e. A t ≤ B. A texel at the clear value (1) has no
-      // occluder: everything in it is lit, also beyond the map's far plane.
-      float lit_begin = t;
-      float lit_end = t_next;
-      if (z_texel < 1.0) {
-        float A = r.h1.z - z_texel * r.h1.w;
-        float B = z_texel * r.h0.w - r.h0.z;
-        if (A > 0.0) {
-          lit_end = min(lit_end, B / A);
-        } else if (A < 0.0) {
-          lit_begin = max(lit_begin, B / A);
-        } else if (B < 0.0) {
-          lit_end = lit_begin;
-        }
-      }
+      vec2 lit = tyn_texel_lit_part(r, tyn_shadow_texel(map, texel), t, t_next);
+      float lit_begin = lit.x;
+      float lit_end = lit.y;
       if (lit_end > lit_begin) {
         // A light-colour texture filters a directional light per texel segment, at its middle (the
         // fine step); a local light's quadrature takes it at every node.
@@ -169,8 +182,16 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
     TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
     if (tyn_clip_to_shadow_map(r, t_in, t_out)) {
       if (part == 0u) lit = tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb);
-      lit += tyn_walk_shadow_map(0u, origin, dir, tyn_part_begin(t_in, t_out, part, parts),
-                                 tyn_part_end(t_in, t_out, part, parts), true);
+      float begin = tyn_part_begin(t_in, t_out, part, parts);
+      float end = tyn_part_end(t_in, t_out, part, parts);
+#ifdef TYN_WALK_SHADOW_BLOCKS
+      if (tyn_shadow_blocks_built()) {
+        lit += tyn_walk_shadow_blocks(origin, dir, begin, end);
+      } else
+#endif
+      {
+        lit += tyn_walk_shadow_map(0u, origin, dir, begin, end, true);
+      }
       if (part == 0u) lit += tyn_transmittance_integral(t_out, s, frame.extinction.rgb);
     } else if (part == 0u) {
       lit = tyn_transmittance_integral(0.0, s, frame.extinction.rgb);

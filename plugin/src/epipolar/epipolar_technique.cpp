@@ -13,7 +13,8 @@ namespace {
 
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
-constexpr std::uint32_t kBindings = 17;
+constexpr VkFormat kShadowBlockFormat = VK_FORMAT_R32G32_SFLOAT;  // nearest, farthest depth
+constexpr std::uint32_t kBindings = 18;
 // march.comp's and march_args.comp's TYN_MARCH_PARTS (constant_id 1 is the light-colour switch).
 constexpr std::uint32_t kMarchPartsConstantId = 2;
 // fixup.comp's and fixup_args.comp's TYN_FIXUP_SERIAL.
@@ -41,10 +42,17 @@ constexpr std::size_t kSpareTextureSets = 2;
 constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
 constexpr VkDeviceSize kMarchShadowedOffset = 6 * sizeof(std::uint32_t);  // then the listed count
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+// One VkDispatchIndirectCommand; the fix-up arguments hold the fix-up's, then the blocks pass's.
+constexpr VkDeviceSize kDispatchArgsBytes = 3 * sizeof(std::uint32_t);
 
 std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + size - 1) / size; }
 
 }  // namespace
+
+std::uint32_t shadowBlockCount(LightType light, std::uint32_t mapSize) {
+  if (light != LightType::Directional || mapSize == 0) return 0;
+  return groups(mapSize, gpu::TYN_EPIPOLAR_SHADOW_BLOCK);
+}
 
 Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   auto invalid = [](const char* message) { return failure(Status::InvalidArgument, message); };
@@ -110,6 +118,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
       {14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
       {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
   VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   layoutInfo.bindingCount = kBindings;
@@ -129,7 +138,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 10},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 11},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
   }};
   sets_.resize(slots);
@@ -145,13 +154,14 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   if (Outcome o = createImage(gpu, VK_FORMAT_R32G32B32A32_SFLOAT, {1, 1}, kSampleUsage, scatteringLutPlaceholder_); !o) {
     return o;
   }
-  return createDeviceBuffer(gpu, 3 * sizeof(std::uint32_t),
+  if (Outcome o = createImage(gpu, kShadowBlockFormat, {1, 1}, kSampleUsage, shadowBlocksPlaceholder_); !o) return o;
+  return createDeviceBuffer(gpu, 2 * kDispatchArgsBytes,
                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, fixupArgs_);
 }
 
 Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (commonReady_) return {};
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 14> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 15> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
@@ -163,6 +173,7 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
       {&interpolatePipeline_, shaders::interpolate_comp()},
       {&unwarpPipeline_, shaders::unwarp_comp()},
       {&scatteringLutPipeline_, shaders::scattering_lut_comp()},
+      {&shadowBlocksPipeline_, shaders::shadow_blocks_comp()},
       {&debugBackgroundPipeline_, shaders::debug_background_comp()},
       {&debugSamplesPipeline_, shaders::debug_samples_comp()},
       {&debugFixupPipeline_, shaders::debug_fixup_comp()},
@@ -247,13 +258,17 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   destroyBuffer(gpu, fixupArgs_);
   destroyImage(gpu, scatteringLut_);
   destroyImage(gpu, scatteringLutPlaceholder_);
+  for (auto& [lastFrame, image] : retiredShadowBlocks_) destroyImage(gpu, image);
+  retiredShadowBlocks_.clear();
+  destroyImage(gpu, shadowBlocks_);
+  destroyImage(gpu, shadowBlocksPlaceholder_);
   for (MappedBuffer& buffer : fixupReadback_) destroyBuffer(gpu, buffer);
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
                               marchArgsPipeline_, shadowTestArgsPipeline_, shadowTestPipeline_, refineIntensityPipeline_,
                               interpolatePipeline_, unwarpPipeline_, fixupArgsPipelines_[0], fixupArgsPipelines_[1],
-                              scatteringLutPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
+                              scatteringLutPipeline_, shadowBlocksPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
                               debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
@@ -274,8 +289,10 @@ Outcome EpipolarTechnique::resize(const Gpu& gpu, VkExtent2D extent) {
 }
 
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                                   std::uint64_t frameIndex, std::uint32_t framesInFlight) {
+                                   std::uint32_t shadowBlocks, std::uint64_t frameIndex,
+                                   std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
+  if (Outcome o = prepareShadowBlocks(gpu, shadowBlocks, frameIndex, framesInFlight); !o) return o;
   // A tree of L 1D samples takes L − 1 texels per row; without one a 1 × 1 texture keeps the
   // descriptor valid.
   const std::uint32_t treeWidth = treeSamples > 1 ? treeSamples - 1 : 1;
@@ -343,6 +360,29 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
     return outcome;
   }
   textures_ = fresh;
+  return {};
+}
+
+Outcome EpipolarTechnique::prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
+                                               std::uint32_t framesInFlight) {
+  // Frame f has completed once frame f + framesInFlight is recorded.
+  std::erase_if(retiredShadowBlocks_, [&](std::pair<std::uint64_t, OwnedImage>& retired) {
+    if (retired.first + framesInFlight > frameIndex) return false;
+    destroyImage(gpu, retired.second);
+    return true;
+  });
+  shadowBlocksUsed_ = side != 0;
+  if (side == 0 || side == shadowBlocksSide_) return {};
+  if (shadowBlocks_.image != VK_NULL_HANDLE) {
+    retiredShadowBlocks_.emplace_back(frameIndex == 0 ? 0 : frameIndex - 1, shadowBlocks_);
+    shadowBlocks_ = OwnedImage{};
+    shadowBlocksSide_ = 0;
+  }
+  if (Outcome o = createImage(gpu, kShadowBlockFormat, {side, side}, kSampleUsage, shadowBlocks_); !o) {
+    shadowBlocksUsed_ = false;
+    return o;
+  }
+  shadowBlocksSide_ = side;
   return {};
 }
 
@@ -427,6 +467,9 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
                                   (scatteringLut_.view != VK_NULL_HANDLE ? scatteringLut_ : scatteringLutPlaceholder_).view,
                                   VK_IMAGE_LAYOUT_GENERAL};
   write(15, 16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &lut;
+  const VkDescriptorImageInfo blocks{VK_NULL_HANDLE, (shadowBlocksUsed_ ? shadowBlocks_ : shadowBlocksPlaceholder_).view,
+                                     VK_IMAGE_LAYOUT_GENERAL};
+  write(16, 17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &blocks;
   // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
   const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};
   std::uint32_t count = kBindings - 1;  // binding 14, the debug view, only when drawn
@@ -457,12 +500,12 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   };
 
   // A dispatch sized on the GPU by the VkDispatchIndirectCommand at the start of `args`.
-  auto indirectPass = [&](const char* name, VkPipeline pipeline, VkBuffer args) {
+  auto indirectPass = [&](const char* name, VkPipeline pipeline, VkBuffer args, VkDeviceSize offset) {
     timer.beginPass(gpu, cmd, name);
     memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                   readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    gpu.vk.vkCmdDispatchIndirect(cmd, args, 0);
+    gpu.vk.vkCmdDispatchIndirect(cmd, args, offset);
     timer.endPass(gpu, cmd);
     passes.emplace_back(name);
   };
@@ -474,9 +517,16 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
                  {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
   }
   if (!placeholderInitialised_) {
-    imageBarrier(gpu, cmd, scatteringLutPlaceholder_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                 {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0}, {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
+    for (const OwnedImage* image : {&scatteringLutPlaceholder_, &shadowBlocksPlaceholder_}) {
+      imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
+                   {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
+    }
     placeholderInitialised_ = true;
+  }
+  // Rewritten by this frame's blocks pass: earlier contents (and reads) are discarded.
+  if (shadowBlocksUsed_) {
+    imageBarrier(gpu, cmd, shadowBlocks_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
+                 {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
   }
   if (buildTable) {
     // Earlier frames' reads of the old table finish first; its contents are discarded.
@@ -517,12 +567,12 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
     auto marchRound = [&](const char* argsName, const char* name) {
       pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-      indirectPass(name, march, textures_.marchList.buffer);
+      indirectPass(name, march, textures_.marchList.buffer, 0);
     };
     // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
     if (constants.tree.x != 0 && constants.tree.z != 0) {
       pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-      indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer);
+      indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, 0);
     }
     marchRound("epipolar_march_args", "epipolar_march");
     if (constants.refinement.y < 1.0f) {
@@ -539,9 +589,14 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   if (bindings.scatters) {
     pass("epipolar_fixup_args", fixupArgsPipelines_[serialFixup(marchParts_, light) ? 1 : 0],
          [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+    // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
+    // enough rays to repay the blocks; fixup_args.comp decides, zero groups otherwise.
+    if (shadowBlocksUsed_) {
+      indirectPass("epipolar_shadow_blocks", shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
+    }
 
     // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
-    indirectPass("epipolar_fixup", fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer);
+    indirectPass("epipolar_fixup", fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer, 0);
   }
 
   if (bindings.debugView != DebugView::None) {

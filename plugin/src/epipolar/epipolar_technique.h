@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/shared_constants.h"
@@ -16,6 +17,10 @@
 #include "timing.h"
 
 namespace tyndall {
+
+/// Blocks along each side of the fix-up's block image for a directional light's map of
+/// `mapSize`² texels (shaders/epipolar/shadow_blocks.comp); 0 for other lights.
+std::uint32_t shadowBlockCount(LightType light, std::uint32_t mapSize);
 
 /// Checks an EpipolarSettings' every field; the message names the field.
 Outcome validateEpipolarSettings(const EpipolarSettings& settings);
@@ -43,8 +48,10 @@ class EpipolarTechnique {
   /// Makes the sample textures match `settings` and the tree texture hold `treeSamples` 1D
   /// samples per slice (0: no tree is built this frame). Textures of other sizes are kept until no
   /// frame in flight can use them (frames in flight need no stall when the parameters change).
+  /// `shadowBlocks`: blocks along each side of the fix-up's shadow-map block image (a directional
+  /// light's map, shadowBlockCount), 0 when the frame needs none.
   Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                  std::uint64_t frameIndex, std::uint32_t framesInFlight);
+                  std::uint32_t shadowBlocks, std::uint64_t frameIndex, std::uint32_t framesInFlight);
 
   /// Records every pass; each is timed and appended to `passes`. The host inputs must already
   /// be readable by compute shaders and the targets writable (GENERAL).
@@ -85,6 +92,8 @@ class EpipolarTechnique {
     SampleTextures textures;
   };
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);
+  Outcome prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
+                              std::uint32_t framesInFlight);
   void destroySizeDependent(const Gpu& gpu);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
   Outcome createCommonPipelines(const Gpu& gpu);
@@ -110,6 +119,7 @@ class EpipolarTechnique {
   std::array<VkPipeline, 2> fixupArgsPipelines_{};
   LightPipelines fixupPipelines_{};  // per light type, each walking as serialFixup says
   VkPipeline scatteringLutPipeline_ = VK_NULL_HANDLE;
+  VkPipeline shadowBlocksPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugBackgroundPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugSamplesPipeline_ = VK_NULL_HANDLE;
   VkPipeline debugFixupPipeline_ = VK_NULL_HANDLE;
@@ -124,6 +134,15 @@ class EpipolarTechnique {
   OwnedImage scatteringLutPlaceholder_;
   bool placeholderInitialised_ = false;
   std::vector<float> scatteringLutMedium_;   // what the table was built for; empty: never built
+  // A directional light's shadow-map blocks (RG32F, shadowBlockCount² texels, rewritten by every
+  // frame's epipolar_shadow_blocks pass); until the first one, and for other lights, a 1×1
+  // placeholder keeps binding 17 valid. Blocks of another map size are kept until no frame in
+  // flight can use them.
+  OwnedImage shadowBlocks_;
+  std::uint32_t shadowBlocksSide_ = 0;
+  OwnedImage shadowBlocksPlaceholder_;
+  bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
+  std::vector<std::pair<std::uint64_t, OwnedImage>> retiredShadowBlocks_;  // last frame, image
   // Size-dependent.
   MappedBuffer fixupList_;                   // count, then one packed pixel per entry
   SampleTextures textures_;

@@ -1,0 +1,111 @@
+// The epipolar fix-up's walk of a directional light's shadow map: the Reference's texel walk
+// (reference/reference_march.glsl, tyn_walk_shadow_map) that crosses a block of
+// TYN_EPIPOLAR_SHADOW_BLOCK² texels in one step where the block's depth range (shadow_blocks.comp)
+// decides every texel the same way — the ray at or in front of the nearest occluder (all lit,
+// integrated in closed form) or behind the farthest (all shadowed, skipped) — and walks it texel by
+// texel otherwise. A fixed-up pixel sits at a depth break and its ray crosses the whole map; over
+// open ground or inside a shadow its texels all agree, so most of the walk becomes block steps.
+// Each texel that is walked is tested exactly as in the Reference; a block step changes the sum
+// only by rounding (one integral instead of the texels' several), and per texel the verdict is
+// the same, because the ray's clip depth z/w is monotonic in t where w > 0, so its extremes over a
+// block are at the block's ends. With a light-colour texture lit blocks are walked too (their
+// colour is taken per texel segment). Needs `shadow_blocks` (binding 17) in scope.
+#ifndef TYNDALL_BLOCK_WALK_GLSL
+#define TYNDALL_BLOCK_WALK_GLSL
+
+#include "reference/reference_march.glsl"
+
+// The clip depth z/w of the ray at t.
+float tyn_ray_clip_depth(TynShadowRay r, float t) {
+  vec4 h = r.h0 + t * r.h1;
+  return h.z / h.w;
+}
+
+// The texel of map 0 that holds the ray's point at t, along one axis.
+int tyn_ray_texel(TynShadowRay r, float t, int axis, float n) {
+  vec4 h = r.h0 + t * r.h1;
+  return int(floor((h[axis] / h.w * 0.5 + 0.5) * n));
+}
+
+vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
+  TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
+  int size = int(frame.counts.w);
+  float n = float(size);
+  int block_size = int(TYN_EPIPOLAR_SHADOW_BLOCK);
+  bool colored = tyn_has_light_color();
+
+  // The start and the steps of tyn_walk_shadow_map.
+  vec4 h_start = r.h0 + t0 * r.h1;
+  vec2 uv = (h_start.xy / h_start.w) * 0.5 + 0.5;
+  ivec2 texel = clamp(ivec2(floor(uv * n)), ivec2(0), ivec2(size - 1));
+  ivec2 step_dir = ivec2(tyn_texel_step(r.h0.x, r.h1.x, r.h0.w, r.h1.w),
+                         tyn_texel_step(r.h0.y, r.h1.y, r.h0.w, r.h1.w));
+
+  vec3 sum = vec3(0.0);
+  float t = t0;
+  bool coarse = true;  // at a block's first texel: try the block step
+  // At most every texel edge and every block edge once (the loop budget of tyn_walk_shadow_map).
+  int max_steps = 2 * size + 2 * (size / block_size + 1) + 8;
+  for (int i = 0; i < max_steps && t < t1; ++i) {
+    ivec2 block = texel / block_size;
+    if (coarse) {
+      ivec2 lo = block * block_size;
+      ivec2 hi = min(lo + block_size, ivec2(size));  // exclusive
+      float tx = step_dir.x == 0 ? TYN_INFINITY
+                                 : tyn_edge_crossing(r.h0.x, r.h1.x, r.h0.w, r.h1.w,
+                                                     float(step_dir.x > 0 ? hi.x : lo.x) / n * 2.0 - 1.0);
+      float ty = step_dir.y == 0 ? TYN_INFINITY
+                                 : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w,
+                                                     float(step_dir.y > 0 ? hi.y : lo.y) / n * 2.0 - 1.0);
+      float t_exit = clamp(min(tx, ty), t, t1);
+      vec2 range = imageLoad(shadow_blocks, block).rg;  // nearest, farthest occluder depth
+      float z_begin = tyn_ray_clip_depth(r, t);
+      float z_end = tyn_ray_clip_depth(r, t_exit);
+      bool lit = !colored && (range.x >= 1.0 || max(z_begin, z_end) <= range.x);
+      bool shadowed = range.y < 1.0 && min(z_begin, z_end) > range.y;
+      if (lit || shadowed) {
+        if (lit && t_exit > t) sum += tyn_transmittance_integral(t, t_exit, frame.extinction.rgb);
+        t = t_exit;
+        // Into the next block across the edge crossed; along the other axis, the texel of the
+        // exit point, kept inside this block's span against rounding.
+        if (tx <= ty) {
+          texel.x = step_dir.x > 0 ? hi.x : lo.x - 1;
+          texel.y = clamp(tyn_ray_texel(r, t, 1, n), lo.y, hi.y - 1);
+        } else {
+          texel.y = step_dir.y > 0 ? hi.y : lo.y - 1;
+          texel.x = clamp(tyn_ray_texel(r, t, 0, n), lo.x, hi.x - 1);
+        }
+        if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) break;
+        continue;
+      }
+      coarse = false;
+    }
+
+    // One texel, as tyn_walk_shadow_map.
+    float tx = step_dir.x == 0 ? TYN_INFINITY
+                               : tyn_edge_crossing(r.h0.x, r.h1.x, r.h0.w, r.h1.w,
+                                                   float(texel.x + max(step_dir.x, 0)) / n * 2.0 - 1.0);
+    float ty = step_dir.y == 0 ? TYN_INFINITY
+                               : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w,
+                                                   float(texel.y + max(step_dir.y, 0)) / n * 2.0 - 1.0);
+    float t_next = clamp(min(tx, ty), t, t1);
+    if (t_next > t) {
+      vec2 part = tyn_texel_lit_part(r, texelFetch(shadow_maps[0], texel, 0).r, t, t_next);
+      if (part.y > part.x) {
+        sum += tyn_light_color_at(origin + dir * (0.5 * (part.x + part.y))) *
+               tyn_transmittance_integral(part.x, part.y, frame.extinction.rgb);
+      }
+    }
+    t = t_next;
+    if (tx <= ty) {
+      texel.x += step_dir.x;
+    } else {
+      texel.y += step_dir.y;
+    }
+    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) break;
+    coarse = any(notEqual(texel / block_size, block));
+  }
+  return sum;
+}
+
+#endif

@@ -34,12 +34,9 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
   int block_size = int(TYN_EPIPOLAR_SHADOW_BLOCK);
   bool colored = tyn_has_light_color();
 
-  // The start and the steps of tyn_walk_shadow_map.
-  vec4 h_start = r.h0 + t0 * r.h1;
-  vec2 uv = (h_start.xy / h_start.w) * 0.5 + 0.5;
-  ivec2 texel = clamp(ivec2(floor(uv * n)), ivec2(0), ivec2(size - 1));
-  ivec2 step_dir = ivec2(tyn_texel_step(r.h0.x, r.h1.x, r.h0.w, r.h1.w),
-                         tyn_texel_step(r.h0.y, r.h1.y, r.h0.w, r.h1.w));
+  ivec2 texel;
+  ivec2 step_dir;
+  tyn_walk_start(r, t0, size, texel, step_dir);
 
   vec3 sum = vec3(0.0);
   float t = t0;
@@ -51,12 +48,10 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
     if (coarse) {
       ivec2 lo = block * block_size;
       ivec2 hi = min(lo + block_size, ivec2(size));  // exclusive
-      float tx = step_dir.x == 0 ? TYN_INFINITY
-                                 : tyn_edge_crossing(r.h0.x, r.h1.x, r.h0.w, r.h1.w,
-                                                     float(step_dir.x > 0 ? hi.x : lo.x) / n * 2.0 - 1.0);
-      float ty = step_dir.y == 0 ? TYN_INFINITY
-                                 : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w,
-                                                     float(step_dir.y > 0 ? hi.y : lo.y) / n * 2.0 - 1.0);
+      ivec2 exit_edges = ivec2(step_dir.x > 0 ? hi.x : lo.x, step_dir.y > 0 ? hi.y : lo.y);
+      vec2 crossing = tyn_edge_crossings(r, step_dir, exit_edges, n);
+      float tx = crossing.x;
+      float ty = crossing.y;
       float t_exit = clamp(min(tx, ty), t, t1);
       vec2 range = imageLoad(shadow_blocks, block).rg;  // nearest, farthest occluder depth
       float z_begin = tyn_ray_clip_depth(r, t);
@@ -82,13 +77,8 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
     }
 
     // One texel, as tyn_walk_shadow_map.
-    float tx = step_dir.x == 0 ? TYN_INFINITY
-                               : tyn_edge_crossing(r.h0.x, r.h1.x, r.h0.w, r.h1.w,
-                                                   float(texel.x + max(step_dir.x, 0)) / n * 2.0 - 1.0);
-    float ty = step_dir.y == 0 ? TYN_INFINITY
-                               : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w,
-                                                   float(texel.y + max(step_dir.y, 0)) / n * 2.0 - 1.0);
-    float t_next = clamp(min(tx, ty), t, t1);
+    vec2 crossing = tyn_edge_crossings(r, step_dir, texel + max(step_dir, ivec2(0)), n);
+    float t_next = clamp(min(crossing.x, crossing.y), t, t1);
     if (t_next > t) {
       vec2 part = tyn_texel_lit_part(r, texelFetch(shadow_maps[0], texel, 0).r, t, t_next);
       if (part.y > part.x) {
@@ -97,12 +87,7 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
       }
     }
     t = t_next;
-    if (tx <= ty) {
-      texel.x += step_dir.x;
-    } else {
-      texel.y += step_dir.y;
-    }
-    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) break;
+    if (!tyn_next_texel(texel, step_dir, crossing, size)) break;
     coarse = any(notEqual(texel / block_size, block));
   }
   return sum;

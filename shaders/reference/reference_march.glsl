@@ -31,6 +31,35 @@ int tyn_texel_step(float h0, float h1, float h0w, float h1w) {
   return abs(numer) <= noise ? 0 : (numer > 0.0 ? 1 : -1);
 }
 
+// Where a walk of map `size`² from t0 starts: the texel holding the ray's point (clamped to the
+// map), and the direction its texel index moves in along x and y.
+void tyn_walk_start(TynShadowRay r, float t0, int size, out ivec2 texel, out ivec2 step_dir) {
+  vec4 h_start = r.h0 + t0 * r.h1;
+  vec2 uv = (h_start.xy / h_start.w) * 0.5 + 0.5;
+  texel = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
+  step_dir = ivec2(tyn_texel_step(r.h0.x, r.h1.x, r.h0.w, r.h1.w), tyn_texel_step(r.h0.y, r.h1.y, r.h0.w, r.h1.w));
+}
+
+// t at which the ray crosses the texel edge `edges.x` (a column of edges, in texels of a map
+// n texels wide) and `edges.y` (a row); infinite along an axis it does not move along.
+vec2 tyn_edge_crossings(TynShadowRay r, ivec2 step_dir, ivec2 edges, float n) {
+  return vec2(step_dir.x == 0 ? TYN_INFINITY
+                              : tyn_edge_crossing(r.h0.x, r.h1.x, r.h0.w, r.h1.w, float(edges.x) / n * 2.0 - 1.0),
+              step_dir.y == 0 ? TYN_INFINITY
+                              : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w, float(edges.y) / n * 2.0 - 1.0));
+}
+
+// Steps to the next texel across the edge crossed first (`crossing` from tyn_edge_crossings);
+// false once the walk has left the map.
+bool tyn_next_texel(inout ivec2 texel, ivec2 step_dir, vec2 crossing, int size) {
+  if (crossing.x <= crossing.y) {
+    texel.x += step_dir.x;
+  } else {
+    texel.y += step_dir.y;
+  }
+  return all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, ivec2(size)));
+}
+
 // Depth of one texel of one shadow map. Without shaderSampledImageArrayDynamicIndexing a sampler
 // array may only be indexed by constants.
 float tyn_shadow_texel(uint map, ivec2 texel) {
@@ -97,11 +126,9 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   int size = int(frame.counts.w);
   float n = float(size);
 
-  vec4 h_start = r.h0 + t0 * r.h1;
-  vec2 uv = (h_start.xy / h_start.w) * 0.5 + 0.5;
-  ivec2 texel = clamp(ivec2(floor(uv * n)), ivec2(0), ivec2(size - 1));
-  ivec2 step_dir = ivec2(tyn_texel_step(r.h0.x, r.h1.x, r.h0.w, r.h1.w),
-                         tyn_texel_step(r.h0.y, r.h1.y, r.h0.w, r.h1.w));
+  ivec2 texel;
+  ivec2 step_dir;
+  tyn_walk_start(r, t0, size, texel, step_dir);
 
   vec3 sum = vec3(0.0);
   float t = t0;
@@ -111,13 +138,8 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   // that only a branch not taken holds, costs at least one iteration per step.
   int max_steps = 2 * size + 8;
   for (int i = 0; i < max_steps && t < t1; ++i) {
-    float tx = step_dir.x == 0 ? TYN_INFINITY
-                               : tyn_edge_crossing(r.h0.x, r.h1.x, r.h0.w, r.h1.w,
-                                                   float(texel.x + max(step_dir.x, 0)) / n * 2.0 - 1.0);
-    float ty = step_dir.y == 0 ? TYN_INFINITY
-                               : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w,
-                                                   float(texel.y + max(step_dir.y, 0)) / n * 2.0 - 1.0);
-    float t_next = clamp(min(tx, ty), t, t1);
+    vec2 crossing = tyn_edge_crossings(r, step_dir, texel + max(step_dir, ivec2(0)), n);
+    float t_next = clamp(min(crossing.x, crossing.y), t, t1);
 
     if (t_next > t) {
       vec2 lit = tyn_texel_lit_part(r, tyn_shadow_texel(map, texel), t, t_next);
@@ -147,12 +169,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
       }
     }
     t = t_next;
-    if (tx <= ty) {
-      texel.x += step_dir.x;
-    } else {
-      texel.y += step_dir.y;
-    }
-    if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) break;
+    if (!tyn_next_texel(texel, step_dir, crossing, size)) break;
   }
 #ifdef TYN_WALK_LIT_SECTIONS
   if (sections && section.y > section.x) sum += tyn_point_light_lut_segment(origin, dir, section.x, section.y);

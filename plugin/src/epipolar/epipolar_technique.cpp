@@ -268,8 +268,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
                               marchArgsPipeline_, shadowTestArgsPipeline_, shadowTestPipeline_, refineIntensityPipeline_,
                               interpolatePipeline_, unwarpPipeline_, fixupArgsPipelines_[0], fixupArgsPipelines_[1],
-                              scatteringLutPipeline_, shadowBlocksPipeline_, debugBackgroundPipeline_, debugSamplesPipeline_,
-                              debugFixupPipeline_}) {
+                              scatteringLutPipeline_, shadowBlocksPipeline_, debugBackgroundPipeline_,
+                              debugSamplesPipeline_, debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
   for (auto& pipelines : marchPipelines_) destroyPipelines(gpu, pipelines);
@@ -467,8 +467,8 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
                                   (scatteringLut_.view != VK_NULL_HANDLE ? scatteringLut_ : scatteringLutPlaceholder_).view,
                                   VK_IMAGE_LAYOUT_GENERAL};
   write(15, 16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &lut;
-  const VkDescriptorImageInfo blocks{VK_NULL_HANDLE, (shadowBlocksUsed_ ? shadowBlocks_ : shadowBlocksPlaceholder_).view,
-                                     VK_IMAGE_LAYOUT_GENERAL};
+  const OwnedImage& blockImage = shadowBlocksUsed_ ? shadowBlocks_ : shadowBlocksPlaceholder_;
+  const VkDescriptorImageInfo blocks{VK_NULL_HANDLE, blockImage.view, VK_IMAGE_LAYOUT_GENERAL};
   write(16, 17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &blocks;
   // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
   const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};

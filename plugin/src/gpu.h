@@ -49,6 +49,13 @@ Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std
                          VkImageUsageFlags usage, OwnedImage& out);
 void destroyImage(const Gpu& gpu, OwnedImage& image);
 
+/// Whether frame `lastFrame` has completed while frame `frameIndex` is being recorded, with
+/// `framesInFlight` frames in flight (frame f has, once frame f + framesInFlight is): what it used
+/// may then be destroyed.
+inline bool frameCompleted(std::uint64_t lastFrame, std::uint64_t frameIndex, std::uint32_t framesInFlight) {
+  return lastFrame + framesInFlight <= frameIndex;
+}
+
 /// A persistently mapped, host-coherent buffer (per-frame constants).
 struct MappedBuffer {
   VkBuffer buffer = VK_NULL_HANDLE;

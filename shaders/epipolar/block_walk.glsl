@@ -70,7 +70,7 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
           texel.y = step_dir.y > 0 ? hi.y : lo.y - 1;
           texel.x = clamp(tyn_ray_texel(r, t, 0, n), lo.x, hi.x - 1);
         }
-        if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) break;
+        if (!tyn_texel_in_map(texel, size)) break;
         continue;
       }
       coarse = false;

@@ -49,6 +49,11 @@ vec2 tyn_edge_crossings(TynShadowRay r, ivec2 step_dir, ivec2 edges, float n) {
                               : tyn_edge_crossing(r.h0.y, r.h1.y, r.h0.w, r.h1.w, float(edges.y) / n * 2.0 - 1.0));
 }
 
+// Whether `texel` lies in a map of `size`² texels.
+bool tyn_texel_in_map(ivec2 texel, int size) {
+  return all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, ivec2(size)));
+}
+
 // Steps to the next texel across the edge crossed first (`crossing` from tyn_edge_crossings);
 // false once the walk has left the map.
 bool tyn_next_texel(inout ivec2 texel, ivec2 step_dir, vec2 crossing, int size) {
@@ -57,7 +62,7 @@ bool tyn_next_texel(inout ivec2 texel, ivec2 step_dir, vec2 crossing, int size) 
   } else {
     texel.y += step_dir.y;
   }
-  return all(greaterThanEqual(texel, ivec2(0))) && all(lessThan(texel, ivec2(size)));
+  return tyn_texel_in_map(texel, size);
 }
 
 // Depth of one texel of one shadow map. Without shaderSampledImageArrayDynamicIndexing a sampler

@@ -187,7 +187,8 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
       !o) {
     return o;
   }
-  for (std::uint32_t serial : {0u, 1u}) {
+  // The one-thread-per-pixel sizing only where the march runs one thread per sample (serialFixup).
+  for (std::uint32_t serial = 0; serial <= (marchParts_ == 1 ? 1u : 0u); ++serial) {
     const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> walk{{{kFixupSerialConstantId, serial}}};
     if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::fixup_args_comp(), walk,
                                               fixupArgsPipelines_[serial]);
@@ -315,10 +316,10 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
     }
   }
   // The kSpareTextureSets most recently retired sets are kept; older ones are destroyed once no
-  // frame in flight uses them (frame f has completed once frame f + framesInFlight is recorded).
+  // frame in flight uses them.
   std::size_t excess = retired_.size() > kSpareTextureSets ? retired_.size() - kSpareTextureSets : 0;
   for (auto it = retired_.begin(); excess > 0 && it != retired_.end();) {
-    if (it->lastFrame + framesInFlight <= frameIndex) {
+    if (frameCompleted(it->lastFrame, frameIndex, framesInFlight)) {
       destroyTextures(gpu, it->textures);
       it = retired_.erase(it);
       --excess;
@@ -365,24 +366,21 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
 
 Outcome EpipolarTechnique::prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
                                                std::uint32_t framesInFlight) {
-  // Frame f has completed once frame f + framesInFlight is recorded.
   std::erase_if(retiredShadowBlocks_, [&](std::pair<std::uint64_t, OwnedImage>& retired) {
-    if (retired.first + framesInFlight > frameIndex) return false;
+    if (!frameCompleted(retired.first, frameIndex, framesInFlight)) return false;
     destroyImage(gpu, retired.second);
     return true;
   });
   shadowBlocksUsed_ = side != 0;
-  if (side == 0 || side == shadowBlocksSide_) return {};
+  if (side == 0 || side == shadowBlocks_.extent.width) return {};
   if (shadowBlocks_.image != VK_NULL_HANDLE) {
     retiredShadowBlocks_.emplace_back(frameIndex == 0 ? 0 : frameIndex - 1, shadowBlocks_);
     shadowBlocks_ = OwnedImage{};
-    shadowBlocksSide_ = 0;
   }
   if (Outcome o = createImage(gpu, kShadowBlockFormat, {side, side}, kSampleUsage, shadowBlocks_); !o) {
     shadowBlocksUsed_ = false;
     return o;
   }
-  shadowBlocksSide_ = side;
   return {};
 }
 

@@ -138,8 +138,7 @@ class EpipolarTechnique {
   // frame's epipolar_shadow_blocks pass); until the first one, and for other lights, a 1×1
   // placeholder keeps binding 17 valid. Blocks of another map size are kept until no frame in
   // flight can use them.
-  OwnedImage shadowBlocks_;
-  std::uint32_t shadowBlocksSide_ = 0;
+  OwnedImage shadowBlocks_;  // extent: blocks along each side; 0 before the first
   OwnedImage shadowBlocksPlaceholder_;
   bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
   std::vector<std::pair<std::uint64_t, OwnedImage>> retiredShadowBlocks_;  // last frame, image

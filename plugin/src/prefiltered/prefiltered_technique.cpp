@@ -302,9 +302,8 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, st
 Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
                                       bool scatters, VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
                                       std::uint32_t framesInFlight, std::string& note) {
-  // Frame f has completed once frame f + framesInFlight is being recorded.
   std::erase_if(retired_, [&](Retired& retired) {
-    if (retired.lastFrame + framesInFlight > frameIndex) return false;
+    if (!frameCompleted(retired.lastFrame, frameIndex, framesInFlight)) return false;
     destroyMaps(gpu, retired.maps);
     return true;
   });

@@ -162,6 +162,7 @@ std::vector<BadCase> badEpipolarSettings() {
       {"epipolar.maxTreeStep", [](EpipolarSettings& s) { s.maxTreeStep = 8192; }},
       {"epipolar.epipoleFixupRadius", [](EpipolarSettings& s) { s.epipoleFixupRadius = 300.0f; }},
       {"epipolar.epipoleFixupHeightFraction", [](EpipolarSettings& s) { s.epipoleFixupHeightFraction = -0.01f; }},
+      {"epipolar.fixupSteps", [](EpipolarSettings& s) { s.fixupSteps = 257; }},
   };
   std::vector<BadCase> cases;
   for (const auto& [field, mutate] : fields) {

@@ -82,7 +82,7 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   gpu::EpipolarConstants k{};
   k.epipole = gpu::tyn_epipole(lightClip);
   arc = sliceArc(frame.camera, light, k.epipole, glm::vec2(float(extent.width), float(extent.height)));
-  k.arc = glm::vec4(arc.arc, 0.0f, 0.0f);
+  k.arc = glm::vec4(arc.arc, static_cast<float>(settings.fixupSteps), 0.0f);
   k.counts = glm::uvec4(settings.slices, settings.samplesPerSlice, settings.improvedSamplePlacement ? 1u : 0u,
                         settings.initialSampleStep);
   k.refinement = glm::vec4(settings.refinementThreshold, settings.intensityRefinementThreshold,
@@ -456,9 +456,9 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     epipolarK = epipolarConstants(frame, epipolarSettings, extent, arc);
     note += epipolarMarchNote(epipolarK, epipolarSettings) + sliceArcNote(arc);
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
-    // Only a frame that records the fix-up builds the blocks it walks.
+    // Only a frame whose fix-up walks texel by texel (not in steps) builds the blocks it walks.
     const std::uint32_t shadowBlocks =
-        setup.attenuates && setup.scatters && !frame.shadowMaps.empty()
+        setup.attenuates && setup.scatters && !frame.shadowMaps.empty() && epipolarSettings.fixupSteps == 0
             ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)
             : 0;
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, shadowBlocks, stats.frameIndex,

@@ -71,6 +71,13 @@ bool builtInGrid(const std::string& name, std::vector<Configuration>& out, std::
         }
       }
     }
+    // The fix-up's stepped march (fixup-steps) on the cheaper corners, where the exact walk of the
+    // fixed-up pixels is a large part of the frame (forest's fix-up at Performance).
+    for (const char* stepped : {"slices=128,samples=128,intensity-refinement=0.15,fixup-steps=32",
+                                "slices=128,samples=128,intensity-refinement=0.15,fixup-steps=64",
+                                "slices=256,samples=256,intensity-refinement=0.15,fixup-steps=64"}) {
+      texts.push_back(std::string("epipolar:") + stepped);
+    }
     // Prefiltered: the recommended 6-moment variant, the cheapest 4-moment one and the Fourier
     // baseline at the default rectified size, the default at a quarter of the texels; "full": every
     // storage variant and a sixteenth.

@@ -20,7 +20,7 @@ struct EpipolarField {
 };
 
 // In EpipolarSettings' order; describe() writes them in this order.
-const std::array<EpipolarField, 14> kEpipolarFields{{
+const std::array<EpipolarField, 15> kEpipolarFields{{
     {"slices", &EpipolarSettings::slices},
     {"samples", &EpipolarSettings::samplesPerSlice},
     {"improved-placement", nullptr, nullptr, &EpipolarSettings::improvedSamplePlacement},
@@ -35,6 +35,7 @@ const std::array<EpipolarField, 14> kEpipolarFields{{
     {"slice-contrast", nullptr, &EpipolarSettings::sliceContrastThreshold},
     {"epipole-radius", nullptr, &EpipolarSettings::epipoleFixupRadius},
     {"epipole-fraction", nullptr, &EpipolarSettings::epipoleFixupHeightFraction},
+    {"fixup-steps", &EpipolarSettings::fixupSteps},
 }};
 
 constexpr std::array<const char*, 6> kBasisNames{"moments4_64", "moments4_128", "moments6_64",
@@ -90,7 +91,7 @@ void append(std::string& out, const std::string& key, const std::string& value) 
 
 const char* const kEpipolarKeys =
     "slices, samples, improved-placement (0|1), initial-step, refinement, intensity-refinement, density, tree (0|1), "
-    "max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius, epipole-fraction";
+    "max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius, epipole-fraction, fixup-steps";
 const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "

@@ -47,6 +47,11 @@ TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_GROUP = 8u;
 // and the block steps saved about 12 µs per fixed-up pixel on pillars and fence (4 ms for
 // pillars' 300 pixels, 17 ms for fence's 1,400): worth it from about 500 pixels, a side / 4.
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS = 4u;
+// Most steps of the fix-up's stepped march (EpipolarSettings::fixupSteps, fixup_march.glsl). A
+// local light's steps may each end a lit run, integrated by quadrature whose loops spend lavapipe's
+// loop budget of 65,535 iterations per invocation (docs/REFERENCE.md "Loop budget on lavapipe"):
+// 256 steps in each of a point light's three crossed maps stay well inside it.
+TYN_CONST uint TYN_EPIPOLAR_MAX_FIXUP_STEPS = 256u;
 
 struct EpipolarConstants {
   vec4 epipole;      // homogeneous epipole (tyn_epipole): x, y, w, side
@@ -67,7 +72,8 @@ struct EpipolarConstants {
                      // w: a coloured march's chunk in cells (tyn_min_max_add_colored)
   vec4 arc;          // xy: the border arc the slices are spread over, (start, length) in perimeter
                      //     pixels (epipolar_geometry.h "Slice arc"; length ≥ P: the whole border);
-                     // zw: unused
+                     // z: the fix-up's steps per map (EpipolarSettings::fixupSteps; 0: the
+                     //    Reference's texel walk); w: unused
 };
 
 TYN_END

@@ -7,15 +7,19 @@
 // for the split (64 partial walks, each finding its start, and the barriers between them): there a
 // directional light's pixels are walked one per thread, as in the Reference (epipolar_technique.cpp,
 // serialFixup, says when). fixup_args.comp sizes the dispatch for either and caps the groups at the
-// dispatch limit, so the groups stride over the rest of the list.
+// dispatch limit, so the groups stride over the rest of the list. With EpipolarSettings::fixupSteps
+// the walk is replaced by that many steps per map (fixup_steps.glsl), shared by the same threads.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 // A point light's lit sections from the semi-analytic table (reference_march.glsl).
 #define TYN_WALK_LIT_SECTIONS
 // A directional light's map crossed block by block where a block decides all its texels.
 #define TYN_WALK_SHADOW_BLOCKS
+// EpipolarSettings::fixupSteps > 0: N steps per map instead of the texel walk.
+#define TYN_WALK_IN_STEPS
 #include "reference/split_march.glsl"
 #include "epipolar/block_walk.glsl"
+#include "epipolar/fixup_steps.glsl"
 
 // Whether this frame built the blocks (fixup_args.comp).
 bool tyn_shadow_blocks_built() { return shadow_block_groups[0] != 0u; }

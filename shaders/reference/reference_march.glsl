@@ -104,6 +104,14 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1);
 bool tyn_shadow_blocks_built();
 #endif
 
+#ifdef TYN_WALK_IN_STEPS
+// The epipolar fix-up's stepped march where EpipolarSettings::fixupSteps asks for one
+// (epipolar/fixup_steps.glsl; the including shader defines both): this part's share of the steps
+// that cut [t0, t1].
+uint tyn_walk_steps();
+vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, uint part, uint parts, bool directional);
+#endif
+
 #ifdef TYN_WALK_LIT_SECTIONS
 // With TYN_WALK_LIT_SECTIONS defined (the epipolar march and fix-up), a point light's lit parts
 // that follow on from one another are merged into lit sections, and each section is integrated in
@@ -206,6 +214,11 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
       if (part == 0u) lit = tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb);
       float begin = tyn_part_begin(t_in, t_out, part, parts);
       float end = tyn_part_end(t_in, t_out, part, parts);
+#ifdef TYN_WALK_IN_STEPS
+      if (tyn_walk_steps() != 0u) {
+        lit += tyn_step_shadow_map(0u, origin, dir, t_in, t_out, part, parts, true);
+      } else
+#endif
 #ifdef TYN_WALK_SHADOW_BLOCKS
       if (tyn_shadow_blocks_built()) {
         lit += tyn_walk_shadow_blocks(origin, dir, begin, end);
@@ -229,6 +242,12 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
     float t_in = 0.0;
     float t_out = s;
     if (tyn_clip_to_shadow_map(tyn_shadow_ray(map, origin, dir), t_in, t_out)) {
+#ifdef TYN_WALK_IN_STEPS
+      if (tyn_walk_steps() != 0u) {
+        sum += tyn_step_shadow_map(map, origin, dir, t_in, t_out, part, parts, false);
+        continue;
+      }
+#endif
       sum += tyn_walk_shadow_map(map, origin, dir, tyn_part_begin(t_in, t_out, part, parts),
                                  tyn_part_end(t_in, t_out, part, parts), false);
     }

@@ -124,6 +124,13 @@ struct EpipolarSettings {
   /// function's forward lobe, a local light's fall-off) spans a fixed angle, so a fixed number of
   /// pixels covers less of it as the output grows (docs/EPIPOLAR.md, "Unwarp and fix-up").
   float epipoleFixupHeightFraction = 1.0f / 45.0f;
+  /// Steps along a fixed-up pixel's ray. 0 (default): the Reference's walk, texel by texel through
+  /// the shadow map, exact. N in 1..256: yusov2013's fix-up "using fewer steps": the ray's stretch
+  /// in each map is cut into N equal steps, and each step is lit or shadowed by the texel under its
+  /// middle (its lit part against that texel's depth found exactly, then integrated in closed form or
+  /// by the Reference's quadrature). A fixed-up pixel then reads N texels instead of one per texel
+  /// its ray crosses (about the map's side); an occluder narrower than a step can be missed.
+  std::uint32_t fixupSteps = 0;
 };
 
 /// A picture of how the technique sampled the frame, for people tuning it (tyndall-render

@@ -88,6 +88,7 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   if (!(s.epipoleFixupHeightFraction >= 0.0f && s.epipoleFixupHeightFraction <= 0.25f)) {
     return invalid("epipolar.epipoleFixupHeightFraction must be in [0, 0.25]");
   }
+  if (s.fixupSteps > gpu::TYN_EPIPOLAR_MAX_FIXUP_STEPS) return invalid("epipolar.fixupSteps must be in 0..256");
   return {};
 }
 

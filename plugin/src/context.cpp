@@ -461,6 +461,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
         setup.attenuates && setup.scatters && !frame.shadowMaps.empty() && epipolarSettings.fixupSteps == 0
             ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)
             : 0;
+    epipolarK.arc.w = static_cast<float>(shadowBlocks);  // fixup_args.comp sizes the blocks pass by it
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, shadowBlocks, stats.frameIndex,
                                      desc.maxFramesInFlight);
         !o) {

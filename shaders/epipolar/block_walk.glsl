@@ -15,18 +15,6 @@
 
 #include "reference/reference_march.glsl"
 
-// The clip depth z/w of the ray at t.
-float tyn_ray_clip_depth(TynShadowRay r, float t) {
-  vec4 h = r.h0 + t * r.h1;
-  return h.z / h.w;
-}
-
-// The texel of map 0 that holds the ray's point at t, along one axis.
-int tyn_ray_texel(TynShadowRay r, float t, int axis, float n) {
-  vec4 h = r.h0 + t * r.h1;
-  return int(floor((h[axis] / h.w * 0.5 + 0.5) * n));
-}
-
 vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
   TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
   int size = int(frame.counts.w);
@@ -54,8 +42,10 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
       float ty = crossing.y;
       float t_exit = clamp(min(tx, ty), t, t1);
       vec2 range = imageLoad(shadow_blocks, block).rg;  // nearest, farthest occluder depth
-      float z_begin = tyn_ray_clip_depth(r, t);
-      float z_end = tyn_ray_clip_depth(r, t_exit);
+      vec4 h_begin = r.h0 + t * r.h1;
+      vec4 h_exit = r.h0 + t_exit * r.h1;  // the ray's clip point where it leaves the block
+      float z_begin = h_begin.z / h_begin.w;
+      float z_end = h_exit.z / h_exit.w;
       bool lit = !colored && (range.x >= 1.0 || max(z_begin, z_end) <= range.x);
       bool shadowed = range.y < 1.0 && min(z_begin, z_end) > range.y;
       if (lit || shadowed) {
@@ -63,12 +53,13 @@ vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1) {
         t = t_exit;
         // Into the next block across the edge crossed; along the other axis, the texel of the
         // exit point, kept inside this block's span against rounding.
+        ivec2 exit_texel = tyn_clip_texel(h_exit, n);
         if (tx <= ty) {
           texel.x = step_dir.x > 0 ? hi.x : lo.x - 1;
-          texel.y = clamp(tyn_ray_texel(r, t, 1, n), lo.y, hi.y - 1);
+          texel.y = clamp(exit_texel.y, lo.y, hi.y - 1);
         } else {
           texel.y = step_dir.y > 0 ? hi.y : lo.y - 1;
-          texel.x = clamp(tyn_ray_texel(r, t, 0, n), lo.x, hi.x - 1);
+          texel.x = clamp(exit_texel.x, lo.x, hi.x - 1);
         }
         if (!tyn_texel_in_map(texel, size)) break;
         continue;

@@ -47,7 +47,7 @@ TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_GROUP = 8u;
 // and the block steps saved about 12 µs per fixed-up pixel on pillars and fence (4 ms for
 // pillars' 300 pixels, 17 ms for fence's 1,400): worth it from about 500 pixels, a side / 4.
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS = 4u;
-// Most steps of the fix-up's stepped march (EpipolarSettings::fixupSteps, fixup_march.glsl). A
+// Most steps of the fix-up's stepped march (EpipolarSettings::fixupSteps, fixup_steps.glsl). A
 // local light's steps may each end a lit run, integrated by quadrature whose loops spend lavapipe's
 // loop budget of 65,535 iterations per invocation (docs/REFERENCE.md "Loop budget on lavapipe"):
 // 256 steps in each of a point light's three crossed maps stay well inside it.
@@ -73,7 +73,9 @@ struct EpipolarConstants {
   vec4 arc;          // xy: the border arc the slices are spread over, (start, length) in perimeter
                      //     pixels (epipolar_geometry.h "Slice arc"; length ≥ P: the whole border);
                      // z: the fix-up's steps per map (EpipolarSettings::fixupSteps; 0: the
-                     //    Reference's texel walk); w: unused
+                     //    Reference's texel walk); w: blocks along each side of the fix-up's
+                     //    shadow-map block image this frame (shadowBlockCount), 0 when the frame
+                     //    has none (another light, the fix-up in steps, nothing to fix up)
 };
 
 TYN_END

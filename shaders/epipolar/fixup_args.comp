@@ -3,10 +3,11 @@
 // the fix-up splits each walk over its workgroup, one thread per pixel when it does not
 // (fixup.comp), up to the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and
 // its debug view loop over the rest): zero groups, and so no work, when the unwarp flagged none.
-// For a directional light it also sizes the shadow-map blocks pass (shadow_blocks.comp): the blocks
-// read the whole map, a cost the fix-up's block steps repay only when it walks enough rays
-// (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS) texel by texel (not in fixupSteps steps); otherwise zero
-// groups, and the fix-up walks texel by texel or steps.
+// Where the frame has a block image (EpipolarConstants::arc.w, set by the context for a directional
+// light whose fix-up walks texel by texel) it also sizes the shadow-map blocks pass
+// (shadow_blocks.comp): the blocks read the whole map, a cost the fix-up's block steps repay only
+// when it walks enough rays (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS); otherwise zero groups, and the
+// fix-up walks texel by texel or in steps.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
@@ -20,10 +21,8 @@ void main() {
   fixup_groups[0] = min(groups, TYN_EPIPOLAR_MAX_GROUPS);
   fixup_groups[1] = 1u;
   fixup_groups[2] = 1u;
-  uint size = frame.counts.w;
-  bool blocks = frame.counts.x == TYN_LIGHT_DIRECTIONAL && epipolar.arc.z == 0.0 &&
-                fixup_count * TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS >= size;
-  uint side = (size + TYN_EPIPOLAR_SHADOW_BLOCK - 1u) / TYN_EPIPOLAR_SHADOW_BLOCK;
+  uint side = uint(epipolar.arc.w);
+  bool blocks = side != 0u && fixup_count * TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS >= frame.counts.w;
   uint block_groups = (side + TYN_EPIPOLAR_SHADOW_BLOCK_GROUP - 1u) / TYN_EPIPOLAR_SHADOW_BLOCK_GROUP;
   shadow_block_groups[0] = blocks ? block_groups : 0u;
   shadow_block_groups[1] = blocks ? block_groups : 0u;

@@ -62,7 +62,7 @@ vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, ui
     float a = tyn_step_end(r, t0, t1, i, steps, axis, c0[axis], c1[axis], moves);
     float b = tyn_step_end(r, t0, t1, i + 1u, steps, axis, c0[axis], c1[axis], moves);
     vec4 h = r.h0 + (0.5 * (a + b)) * r.h1;
-    ivec2 texel = clamp(ivec2(floor((h.xy / h.w * 0.5 + 0.5) * float(size))), ivec2(0), ivec2(size - 1));
+    ivec2 texel = clamp(tyn_clip_texel(h, float(size)), ivec2(0), ivec2(size - 1));
     vec2 lit = tyn_texel_lit_part(r, tyn_shadow_texel(map, texel), a, b);
     if (lit.y <= lit.x) continue;
     if (directional) {

@@ -31,12 +31,13 @@ int tyn_texel_step(float h0, float h1, float h0w, float h1w) {
   return abs(numer) <= noise ? 0 : (numer > 0.0 ? 1 : -1);
 }
 
+// The texel (unclamped) of a map n texels wide that holds the shadow-clip point h.
+ivec2 tyn_clip_texel(vec4 h, float n) { return ivec2(floor((h.xy / h.w * 0.5 + 0.5) * n)); }
+
 // Where a walk of map `size`² from t0 starts: the texel holding the ray's point (clamped to the
 // map), and the direction its texel index moves in along x and y.
 void tyn_walk_start(TynShadowRay r, float t0, int size, out ivec2 texel, out ivec2 step_dir) {
-  vec4 h_start = r.h0 + t0 * r.h1;
-  vec2 uv = (h_start.xy / h_start.w) * 0.5 + 0.5;
-  texel = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
+  texel = clamp(tyn_clip_texel(r.h0 + t0 * r.h1, float(size)), ivec2(0), ivec2(size - 1));
   step_dir = ivec2(tyn_texel_step(r.h0.x, r.h1.x, r.h0.w, r.h1.w), tyn_texel_step(r.h0.y, r.h1.y, r.h0.w, r.h1.w));
 }
 

@@ -1,9 +1,12 @@
 // The shaders' shared maths (shaders/common/*.h), compiled as C++ from the same source, against
 // double-precision computations of the same quantities.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
+#include "common/gauss_legendre.h"
 #include "common/phase.h"
 #include "common/segment_integral.h"
 
@@ -95,6 +98,45 @@ TEST(SegmentIntegral, PerChannelAndEmptySegments) {
   EXPECT_NEAR(r.z, exactIntegral(2.0, 3.0, 2.0), 1e-6);
   EXPECT_EQ(tyn_transmittance_integral(4.0f, 4.0f, vec3(1.0f)).x, 0.0f);
   EXPECT_EQ(tyn_transmittance_integral(4.0f, 3.0f, vec3(1.0f)).x, 0.0f);
+}
+
+// The local lights' quadrature (common/gauss_legendre.h): along a ray passing the light at
+// distance 1, 1/d² = 1/(1 + s²), whose integral is atan. Segments across the peak, before it and
+// after it, cut by tyn_local_light_pieces; the rule with the shaders' float nodes against atan in
+// double. The bound is the one gauss_legendre.h and medium.glsl quote.
+TEST(LocalLightQuadrature, RuleErrorOnThePeak) {
+  const auto f = [](double s) { return 1.0 / (1.0 + s * s); };
+  const auto rule = [&](double a, double b) {
+    const double m = 0.5 * (a + b);
+    const double r = 0.5 * (b - a);
+    return r * (TYN_GAUSS4_W0 * (f(m - r * TYN_GAUSS4_X0) + f(m + r * TYN_GAUSS4_X0)) +
+                TYN_GAUSS4_W1 * (f(m - r * TYN_GAUSS4_X1) + f(m + r * TYN_GAUSS4_X1)));
+  };
+  double worst = 0.0;         // on tyn_local_light_pieces' pieces
+  double worst_double = 0.0;  // on pieces twice as long
+  for (double a = -6.0; a <= 6.0; a += 0.01) {
+    for (double length : {0.05, 0.3, 0.5, 1.0, 2.7, 8.0, 15.9}) {
+      const double b = a + length;
+      // The closest point of [a, b] to the light, as tyn_local_light_piece finds it.
+      const double s_near = std::clamp(0.0, a, b);
+      const double d_near = std::sqrt(1.0 + s_near * s_near);
+      const int pieces = tyn_local_light_pieces(static_cast<float>(length), static_cast<float>(d_near));
+      ASSERT_GE(pieces, 1);
+      ASSERT_LE(length / pieces, 0.5 * d_near * (1.0 + 1e-6)) << "a piece longer than half the distance";
+      const double exact = std::atan(b) - std::atan(a);
+      for (int split : {pieces, (pieces + 1) / 2}) {
+        double sum = 0.0;
+        for (int i = 0; i < split; ++i) sum += rule(a + i * length / split, a + (i + 1) * length / split);
+        double& w = split == pieces ? worst : worst_double;
+        w = std::max(w, std::abs(sum / exact - 1.0));
+      }
+    }
+  }
+  std::printf("[ quadrature ] worst relative error on 1/d^2: %.2e (%.2e with pieces twice as long)\n", worst,
+              worst_double);
+  EXPECT_LT(worst, 1.2e-7);
+  // The pieces' length matters: twice as long, the rule is over an order of magnitude worse.
+  EXPECT_GT(worst_double, 10.0 * worst);
 }
 
 }  // namespace

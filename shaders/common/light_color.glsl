@@ -12,12 +12,16 @@ vec3 tyn_light_color_uv(vec2 uv) {
   return textureLod(light_color, uv, 0.0).rgb;
 }
 
+// At a point given by its clip coordinates in shadow map 0.
+vec3 tyn_light_color_clip(vec4 clip) {
+  if (!tyn_has_light_color() || !(clip.w > 0.0)) return vec3(1.0);
+  return tyn_light_color_uv(vec2(clip.x, clip.y) / clip.w * 0.5 + 0.5);
+}
+
 // At a world position, through shadow map 0's projection.
 vec3 tyn_light_color_at(vec3 position) {
   if (!tyn_has_light_color()) return vec3(1.0);
-  vec4 clip = frame.world_to_shadow[0] * vec4(position, 1.0);
-  if (!(clip.w > 0.0)) return vec3(1.0);
-  return tyn_light_color_uv(vec2(clip.x, clip.y) / clip.w * 0.5 + 0.5);
+  return tyn_light_color_clip(frame.world_to_shadow[0] * vec4(position, 1.0));
 }
 
 #endif

@@ -3,6 +3,7 @@
 #ifndef TYNDALL_MEDIUM_GLSL
 #define TYNDALL_MEDIUM_GLSL
 
+#include "common/gauss_legendre.h"
 #include "common/light_color.glsl"
 #include "common/phase.h"
 
@@ -38,12 +39,32 @@ float tyn_spot_falloff(float cos_angle) {
   return x * x * (3.0 - 2.0 * x);
 }
 
-// Spot/point light: light reaching the point x, scattered towards the camera along `view_dir`
-// and attenuated back to the camera over distance t: E(x) · Σσ_s p(cos θ) · e^{−σ_t t}, with
-// E = I / d² · e^{−σ_t d} · falloff.
-vec3 tyn_local_light_integrand(vec3 origin, vec3 view_dir, float t) {
-  vec3 x = origin + t * view_dir;
-  vec3 to_light = frame.light_position.xyz - x;
+// What a local light's integrand needs of a view ray origin + t·dir, computed once per ray: the
+// quadratures below evaluate it at hundreds of nodes on a coloured spot light's rays, where
+// recomputing the light vector and the colour texture's projection from the point at each node
+// cost a quarter of the march (stained-glass, Performance, 640×360 on lavapipe: 198 → 151 ms;
+// docs/EPIPOLAR.md "Coloured shafts").
+struct TynLocalLightRay {
+  vec3 dir;
+  vec3 to_light;    // light position − origin
+  vec4 clip;        // the origin in shadow map 0's clip space (the light-colour texture)
+  vec4 clip_step;   // dir there (w component included: a spot's projection is perspective)
+};
+
+TynLocalLightRay tyn_local_light_ray(vec3 origin, vec3 dir) {
+  TynLocalLightRay ray;
+  ray.dir = dir;
+  ray.to_light = frame.light_position.xyz - origin;
+  ray.clip = frame.world_to_shadow[0] * vec4(origin, 1.0);
+  ray.clip_step = frame.world_to_shadow[0] * vec4(dir, 0.0);
+  return ray;
+}
+
+// Spot/point light: light reaching the point at t, scattered towards the camera along the ray and
+// attenuated back to the camera over distance t: E(x) · Σσ_s p(cos θ) · e^{−σ_t t}, with
+// E = I / d² · e^{−σ_t d} · falloff (one exponential for both paths, d + t).
+vec3 tyn_local_light_integrand(TynLocalLightRay ray, float t) {
+  vec3 to_light = ray.to_light - t * ray.dir;
   float d2 = max(dot(to_light, to_light), 1e-12);
   float d = sqrt(d2);
   vec3 omega_l = to_light / d;
@@ -52,37 +73,49 @@ vec3 tyn_local_light_integrand(vec3 origin, vec3 view_dir, float t) {
                       : 1.0;
   // A light-colour texture filters the light at every quadrature node: next to a spot light the
   // integrand peaks within a texel, where one colour per segment would be off.
-  vec3 irradiance = frame.light_radiance.rgb * tyn_light_color_at(x) * (falloff / d2) * exp(-frame.extinction.rgb * d);
-  return irradiance * tyn_phase_weighted_scattering(dot(view_dir, omega_l)) *
-         exp(-frame.extinction.rgb * t);
+  vec3 color = tyn_has_light_color() ? tyn_light_color_clip(ray.clip + t * ray.clip_step) : vec3(1.0);
+  return frame.light_radiance.rgb * color * (falloff / d2) *
+         tyn_phase_weighted_scattering(dot(ray.dir, omega_l)) * exp(-frame.extinction.rgb * (d + t));
 }
 
-// ∫_a^b of the integrand above by 4-point Gauss–Legendre on pieces no longer than half the
-// distance to the light, so that the 1/d² peak near the light is resolved (relative error of
-// the rule on such a piece is below 1e-5 for 1/d²). Needs a < b and a segment on which the
-// integrand is smooth (tyn_local_light_section splits one at the spot cones first).
-vec3 tyn_local_light_piece(vec3 origin, vec3 view_dir, float a, float b) {
-  // Nodes ±x0, ±x1 and weights w0, w1 of the 4-point rule on [−1, 1].
-  const float x0 = 0.3399810435848563;
-  const float x1 = 0.8611363115940526;
-  const float w0 = 0.6521451548625461;
-  const float w1 = 0.3478548451374538;
-  float t_closest = clamp(dot(frame.light_position.xyz - origin, view_dir), a, b);
-  float d_near = max(length(origin + t_closest * view_dir - frame.light_position.xyz), 1e-4);
-  int pieces = int(clamp(ceil((b - a) / (0.5 * d_near)), 1.0, 64.0));
+// ∫_a^b of the integrand above by the 4-point Gauss–Legendre rule on pieces no longer than half
+// the distance to the light (common/gauss_legendre.h), so that the 1/d² peak near the light is
+// resolved (relative error for 1/d² below 1.2·10⁻⁷). Needs a < b and a segment on which the
+// integrand is smooth (tyn_local_light_segment_cut splits one at the spot cones first).
+// `pairwise` (a constant at every call site): the loop takes one pair of symmetric nodes per
+// iteration instead of all four. A coloured spot light's march inlines this at several call sites
+// of its loop, and there pairwise measured 151 → 114 ms for the same L_in to the bit
+// (stained-glass, Performance, 640×360, lavapipe: docs/EPIPOLAR.md "Coloured shafts"); the cause,
+// likely the code of four inlined integrands per call site against two, was not isolated. It costs
+// two iterations of lavapipe's loop budget per piece instead of one (docs/REFERENCE.md "Loop
+// budget on lavapipe"), which a texel walk past a point light with 4096² maps cannot spare: the
+// Reference and the fix-up keep four nodes per iteration.
+vec3 tyn_local_light_piece(TynLocalLightRay ray, float a, float b, const bool pairwise) {
+  float t_closest = clamp(dot(ray.to_light, ray.dir), a, b);
+  float d_near = max(length(t_closest * ray.dir - ray.to_light), 1e-4);
+  int pieces = tyn_local_light_pieces(b - a, d_near);
   float h = (b - a) / float(pieces);
-  float d0 = 0.5 * h * x0;
-  float d1 = 0.5 * h * x1;
+  float d0 = 0.5 * h * TYN_GAUSS4_X0;
+  float d1 = 0.5 * h * TYN_GAUSS4_X1;
   vec3 sum = vec3(0.0);
-  float mid = a + 0.5 * h;
-  // The exit test at the end: one iteration of lavapipe's loop budget per piece (above), not two.
-  for (int i = 0;;) {
-    sum += w0 * (tyn_local_light_integrand(origin, view_dir, mid - d0) +
-                 tyn_local_light_integrand(origin, view_dir, mid + d0));
-    sum += w1 * (tyn_local_light_integrand(origin, view_dir, mid - d1) +
-                 tyn_local_light_integrand(origin, view_dir, mid + d1));
-    if (++i >= pieces) break;
-    mid = a + (float(i) + 0.5) * h;
+  // The exit test at the end: one iteration of lavapipe's loop budget per pass, not two.
+  if (pairwise) {
+    for (int i = 0;;) {
+      bool outer = (i & 1) == 1;
+      float mid = a + (float(i >> 1) + 0.5) * h;
+      float offset = outer ? d1 : d0;
+      sum += (outer ? TYN_GAUSS4_W1 : TYN_GAUSS4_W0) *
+             (tyn_local_light_integrand(ray, mid - offset) + tyn_local_light_integrand(ray, mid + offset));
+      if (++i >= 2 * pieces) break;
+    }
+  } else {
+    float mid = a + 0.5 * h;
+    for (int i = 0;;) {
+      sum += TYN_GAUSS4_W0 * (tyn_local_light_integrand(ray, mid - d0) + tyn_local_light_integrand(ray, mid + d0));
+      sum += TYN_GAUSS4_W1 * (tyn_local_light_integrand(ray, mid - d1) + tyn_local_light_integrand(ray, mid + d1));
+      if (++i >= pieces) break;
+      mid = a + (float(i) + 0.5) * h;
+    }
   }
   return sum * 0.5 * h;
 }
@@ -133,14 +166,14 @@ vec4 tyn_local_light_cuts(vec3 origin, vec3 view_dir) {
 // [a, b] overlaps are visited, one when no kink falls inside it: a march's short parts seldom
 // hold one, and a CPU driver runs a branch for all lanes when any takes it, so five spans tested
 // one by one cost five quadratures per part (stained-glass, lavapipe: see docs/EPIPOLAR.md).
-vec3 tyn_local_light_segment_cut(vec3 origin, vec3 view_dir, vec4 cuts, float a, float b) {
+vec3 tyn_local_light_segment_cut(TynLocalLightRay ray, vec4 cuts, float a, float b, const bool pairwise) {
   vec3 sum = vec3(0.0);
   float lo = a;
   // At most the four kinks split [a, b]: five spans.
   for (int span = 0; span < 5 && lo < b; ++span) {
     vec4 ahead = mix(vec4(b), cuts, greaterThan(cuts, vec4(lo)));
     float hi = min(min(min(ahead.x, ahead.y), min(ahead.z, ahead.w)), b);
-    sum += tyn_local_light_piece(origin, view_dir, lo, hi);
+    sum += tyn_local_light_piece(ray, lo, hi, pairwise);
     lo = hi;
   }
   return sum;

@@ -48,6 +48,7 @@ vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, ui
   int axis = abs(c1.x - c0.x) >= abs(c1.y - c0.y) ? 0 : 1;
   bool moves = abs(c1[axis] - c0[axis]) * 0.5 * float(size) >= 1.0;
   vec4 cuts = directional ? vec4(0.0) : tyn_local_light_cuts(origin, dir);
+  TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
   // A point light's consecutive lit parts are merged into runs and each run integrated from the
   // semi-analytic table, as the texel walk's sections (reference_march.glsl TYN_WALK_LIT_SECTIONS).
   // A spot light's (or a coloured light's) lit parts take the quadrature one step at a time: over a
@@ -76,7 +77,7 @@ vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, ui
       }
       run.y = lit.y;
     } else {
-      sum += tyn_local_light_segment_cut(origin, dir, cuts, lit.x, lit.y);
+      sum += tyn_local_light_segment_cut(local_ray, cuts, lit.x, lit.y, false);
     }
   }
   if (sections && run.y > run.x) sum += tyn_point_light_lut_segment(origin, dir, run.x, run.y);

@@ -26,8 +26,6 @@ layout(constant_id = 2) const uint TYN_MARCH_PARTS = 1u;
 int g_slice;
 vec2 g_origin_texels;
 vec2 g_step_texels;
-vec3 g_ray_origin;
-vec3 g_ray_direction;
 // u = (a0 + a1 t) / (p + q t) (slice_ray.glsl); its inverse gives a spot light's lit section
 // back in t.
 vec4 g_u_of_t;  // (a0, a1, p, q)
@@ -36,11 +34,12 @@ vec4 g_u_of_t;  // (a0, a1, p, q)
 #define TYN_SCATTERING_LUT_FRAME
 #include "epipolar/scattering_lut.h"
 
-// A spot light's medium, ray and cone for the table, and the ray's kinks for the coloured
+// A spot light's medium, ray and cone for the table, and the ray and its kinks for the coloured
 // quadrature (hoisted out of the march).
 TynMedium g_medium;
 TynLightRay g_light_ray;
 TynSpotCone g_cone;
+TynLocalLightRay g_local_ray;
 vec4 g_cuts;
 
 float tyn_march_t_of_u(float u) {
@@ -49,13 +48,14 @@ float tyn_march_t_of_u(float u) {
 
 // A spot light's lit section: from the semi-analytic table (inside the inner cone) and quadrature
 // (in the penumbra), yusov2013; with a light-colour texture the colour varies along the section, so
-// it is integrated by quadrature with the colour at every node instead.
+// it is integrated by quadrature with the colour at every node instead, on chunks of at most one
+// colour texel (tyn_local_light_piece's `pairwise` says why pairwise).
 vec3 tyn_march_local_light(float u_a, float u_b) {
   float t_a = tyn_march_t_of_u(u_a);
   float t_b = tyn_march_t_of_u(u_b);
   float a = max(min(t_a, t_b), 0.0);
   float b = max(t_a, t_b);
-  if (TYN_MARCH_LIGHT_COLOR) return tyn_local_light_segment_cut(g_ray_origin, g_ray_direction, g_cuts, a, b);
+  if (TYN_MARCH_LIGHT_COLOR) return tyn_local_light_segment_cut(g_local_ray, g_cuts, a, b, true);
   return frame.light_radiance.rgb * tyn_spot_segment(g_medium, g_light_ray, g_cone, a, b);
 }
 
@@ -90,14 +90,15 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   g_origin_texels = sr.origin_texels;
   g_step_texels = sr.step_texels;
   g_u_of_t = sr.u_of_t;
-  g_ray_origin = origin;
-  g_ray_direction = dir;
   if (TYN_LIGHT_TYPE == TYN_LIGHT_SPOT) {
     g_medium = tyn_medium_from_frame();
     g_light_ray = tyn_light_ray(origin, dir, frame.light_position.xyz);
     g_cone = tyn_spot_cone_from_frame(g_light_ray, dir);
   }
-  if (TYN_MARCH_LIGHT_COLOR && TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) g_cuts = tyn_local_light_cuts(origin, dir);
+  if (TYN_MARCH_LIGHT_COLOR && TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) {
+    g_local_ray = tyn_local_light_ray(origin, dir);
+    g_cuts = tyn_local_light_cuts(origin, dir);
+  }
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
   vec3 unshadowed = vec3(0.0);
   if (directional && part == 0u) {

@@ -137,6 +137,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   vec2 section = vec2(t0);  // the lit section being merged: [x, y), empty while y ≤ x
 #endif
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
+  TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
   int size = int(frame.counts.w);
   float n = float(size);
 
@@ -178,7 +179,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
         }
 #endif
         else {
-          sum += tyn_local_light_piece(origin, dir, lit_begin, lit_end);
+          sum += tyn_local_light_piece(local_ray, lit_begin, lit_end, false);
         }
       }
     }

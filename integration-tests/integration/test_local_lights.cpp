@@ -3,10 +3,10 @@
 // 4096² maps too: a ray passing the light crosses thousands of texels in each map, and on lavapipe
 // the loops of one shader invocation share 65,535 iterations in all (docs/REFERENCE.md "Loop
 // budget on lavapipe"); when the walk spent more than that, the rays near the light came out too
-// dark. And point-lamp's view of its light, at every pixel: one of its rays runs through a 90° map
-// along a row just below a texel edge towards its vanishing point, where the walk once took the
-// edge's crossing behind the light's plane for one already passed and dropped the rest of the map
-// (tyn_edge_crossing).
+// dark. And the lamp scenes' view of their light (spot-lamp's; point-lamp's as a point light), at
+// every pixel: one of point-lamp's rays runs through a 90° map along a row towards its vanishing
+// point, where the walk once took an edge's crossing behind the light's plane for one already
+// passed and dropped the rest of the map (tyn_edge_crossing).
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -48,13 +48,15 @@ host::Scene localLightScene(host::LightType type, std::uint32_t shadowMapSize) {
   return scene;
 }
 
-// samples/scenes/point-lamp.json's camera, light and medium over the ground alone.
-host::Scene pointLampView(std::uint32_t shadowMapSize) {
-  host::Scene scene = localLightScene(host::LightType::Point, shadowMapSize);
+// samples/scenes/spot-lamp.json's (and point-lamp.json's) camera, light and medium over the ground
+// alone.
+host::Scene lampView(host::LightType type, std::uint32_t shadowMapSize) {
+  host::Scene scene = localLightScene(type, shadowMapSize);
   scene.camera.position = {9.0, 2.5, 11.0};
   scene.camera.target = {0.0, 3.0, 0.0};
   scene.camera.farPlane = 80.0;
   scene.light.position = {0.0, 7.0, 0.0};
+  scene.light.direction = {0.0, -1.0, 0.0};
   scene.light.color = {1.0, 0.9, 0.75};
   scene.light.intensity = 60.0;
   scene.medium[0].scattering = {0.04, 0.04, 0.04};
@@ -98,15 +100,15 @@ glm::dvec3 quadrature(const host::Scene& scene, const glm::dvec3& origin, const 
 struct LocalLightCase {
   host::LightType type;
   std::uint32_t shadowMapSize;
-  bool pointLampView = false;  // pointLampView's scene, every pixel (else every third in x and y)
+  bool lampView = false;  // lampView's scene, every pixel (else every third in x and y)
 };
 
 class LocalLights : public ::testing::TestWithParam<LocalLightCase> {};
 
 TEST_P(LocalLights, ReferenceMatchesQuadrature) {
-  const host::Scene scene = GetParam().pointLampView ? pointLampView(GetParam().shadowMapSize)
-                                                    : localLightScene(GetParam().type, GetParam().shadowMapSize);
-  const std::uint32_t stride = GetParam().pointLampView ? 1 : 3;
+  const host::Scene scene = GetParam().lampView ? lampView(GetParam().type, GetParam().shadowMapSize)
+                                               : localLightScene(GetParam().type, GetParam().shadowMapSize);
+  const std::uint32_t stride = GetParam().lampView ? 1 : 3;
   samples::RenderOptions options;
   options.profile = Profile::Reference;
   options.width = kWidth;
@@ -131,7 +133,7 @@ TEST_P(LocalLights, ReferenceMatchesQuadrature) {
   }
   const ErrorStats stats = compareRgb(result.scattering, reference, &mask);
   std::printf("[ %s light%s, %u^2 maps ] L_in: %s\n", GetParam().type == host::LightType::Spot ? "spot" : "point",
-              GetParam().pointLampView ? " (point-lamp's view)" : "", GetParam().shadowMapSize, describe(stats).c_str());
+              GetParam().lampView ? " (the lamp scenes' view)" : "", GetParam().shadowMapSize, describe(stats).c_str());
   // The pixel farthest from the quadrature (red), to say where an error sits.
   std::size_t worst = 0;
   double worstError = -1.0;
@@ -172,10 +174,11 @@ INSTANTIATE_TEST_SUITE_P(SpotAndPoint, LocalLights,
                                            LocalLightCase{host::LightType::Point, 1024},
                                            LocalLightCase{host::LightType::Spot, 4096},
                                            LocalLightCase{host::LightType::Point, 4096},
+                                           LocalLightCase{host::LightType::Spot, 1024, true},
                                            LocalLightCase{host::LightType::Point, 1024, true}),
                          [](const auto& test_param) -> std::string {
-                           if (test_param.param.pointLampView) return "point_lamp_view";
                            const bool spot = test_param.param.type == host::LightType::Spot;
+                           if (test_param.param.lampView) return spot ? "spot_lamp_view" : "point_lamp_view";
                            if (test_param.param.shadowMapSize == 1024) return spot ? "spot" : "point";
                            return spot ? "spot_4096" : "point_4096";
                          });

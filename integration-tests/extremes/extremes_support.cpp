@@ -5,18 +5,17 @@
 #include <cstddef>
 #include <cstdio>
 
+#include "report.h"
+
 namespace tyndall::test {
 
 namespace {
 
-// The profile issue's accuracy goals (relative RMSE of L_in), doubled by the check.
+// The profile issue's accuracy goals (relative RMSE of L_in; samples/bench/report.cpp
+// profileGoals), doubled by the check.
 double budget(Profile profile) {
-  switch (profile) {
-    case Profile::High: return 0.02;
-    case Profile::Balanced: return 0.04;
-    case Profile::Performance: return 0.08;
-    default: return 0.0;
-  }
+  const samples::bench::ProfileGoal* goal = samples::bench::profileGoal(profile);
+  return goal != nullptr ? goal->maxRelativeRmse : 0.0;
 }
 
 std::size_t nonFiniteRgb(const host::ImageRgba32f& image) {

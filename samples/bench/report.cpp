@@ -216,6 +216,15 @@ const std::vector<ProfileGoal>& profileGoals() {
   return goals;
 }
 
+const ProfileGoal* profileGoal(Profile profile) {
+  switch (profile) {
+    case Profile::High: return &profileGoals()[0];
+    case Profile::Balanced: return &profileGoals()[1];
+    case Profile::Performance: return &profileGoals()[2];
+    default: return nullptr;
+  }
+}
+
 std::vector<ProfileChoiceResult> chooseProfiles(const std::vector<Summary>& summaries) {
   std::vector<ProfileChoiceResult> out;
   for (const ProfileGoal& goal : profileGoals()) {

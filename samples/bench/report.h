@@ -53,6 +53,8 @@ struct ProfileGoal {
   double maxSceneRelativeRmse;
 };
 const std::vector<ProfileGoal>& profileGoals();
+/// The goal of High, Balanced or Performance (the tests' bars read it too); nullptr for the others.
+const ProfileGoal* profileGoal(Profile profile);
 
 struct ProfileChoiceResult {
   ProfileGoal goal;

@@ -226,6 +226,9 @@ bool renderSceneWith(host::Device& device, const host::Scene& scene, const Rende
   const double wallMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   result.wallMillisecondsPerFrame = wallMs / (options.frames > 1 ? options.frames - 1 : 1);
   result.deviceName = device.name();
+  VkPhysicalDeviceProperties properties{};
+  vkGetPhysicalDeviceProperties(device.physicalDevice(), &properties);
+  result.cpuDevice = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
   if (effect) {
     effect->context().collectTimings();
     result.stats = effect->context().stats();

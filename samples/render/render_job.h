@@ -62,6 +62,7 @@ struct RenderResult {
   /// N = 1): on a CPU driver such as lavapipe this is the time the device spends.
   double wallMillisecondsPerFrame = 0.0;
   std::string deviceName;
+  bool cpuDevice = false;  ///< VK_PHYSICAL_DEVICE_TYPE_CPU (lavapipe): the plugin's criterion for CPU-driver choices
 };
 
 /// The stub host's settings for the options (AOV images when the options name an AOV file or

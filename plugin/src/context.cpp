@@ -174,19 +174,8 @@ struct Context::Impl {
 };
 
 Outcome Context::Impl::createSizeIndependent() {
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = VK_FILTER_NEAREST;
-  samplerInfo.minFilter = VK_FILTER_NEAREST;
-  samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkResult result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &nearest);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
-  samplerInfo.magFilter = VK_FILTER_LINEAR;
-  samplerInfo.minFilter = VK_FILTER_LINEAR;
-  result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &linear);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+  if (Outcome o = createSampler(gpu, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, nearest); !o) return o;
+  if (Outcome o = createSampler(gpu, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, linear); !o) return o;
   if (Outcome o = createImage(gpu, VK_FORMAT_R8G8B8A8_UNORM, {1, 1},
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, white);
       !o) {

@@ -54,43 +54,12 @@ Outcome allocate(const Gpu& gpu, const VkMemoryRequirements& requirements,
 
 }  // namespace
 
-Outcome createImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, VkImageUsageFlags usage,
-                    OwnedImage& out) {
-  out.format = format;
-  out.extent = extent;
-  VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-  info.imageType = VK_IMAGE_TYPE_2D;
-  info.format = format;
-  info.extent = {extent.width, extent.height, 1};
-  info.mipLevels = 1;
-  info.arrayLayers = 1;
-  info.samples = VK_SAMPLE_COUNT_1_BIT;
-  info.tiling = VK_IMAGE_TILING_OPTIMAL;
-  info.usage = usage;
-  info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
-  info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  VkResult result = gpu.vk.vkCreateImage(gpu.device, &info, gpu.allocator, &out.image);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateImage", result);
+namespace {
 
-  VkMemoryRequirements requirements{};
-  gpu.vk.vkGetImageMemoryRequirements(gpu.device, out.image, &requirements);
-  Outcome outcome = allocate(gpu, requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, out.memory);
-  if (!outcome) return outcome;
-  out.bytes = requirements.size;
-  result = gpu.vk.vkBindImageMemory(gpu.device, out.image, out.memory, 0);
-  if (result != VK_SUCCESS) return vkFailed("vkBindImageMemory", result);
-
-  VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-  view.image = out.image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D;
-  view.format = format;
-  view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-  result = gpu.vk.vkCreateImageView(gpu.device, &view, gpu.allocator, &out.view);
-  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateImageView", result);
-}
-
-Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers,
-                         VkImageUsageFlags usage, OwnedImage& out) {
+// One 2D image of `layers` layers with its memory and a view of every layer: a 2D view when
+// `array` is false (layers = 1), else a 2D_ARRAY view.
+Outcome createImageLayers(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers, bool array,
+                          VkImageUsageFlags usage, OwnedImage& out) {
   out.format = format;
   out.extent = extent;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -117,11 +86,23 @@ Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std
 
   VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   view.image = out.image;
-  view.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+  view.viewType = array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   view.format = format;
   view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
   result = gpu.vk.vkCreateImageView(gpu.device, &view, gpu.allocator, &out.view);
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateImageView", result);
+}
+
+}  // namespace
+
+Outcome createImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, VkImageUsageFlags usage,
+                    OwnedImage& out) {
+  return createImageLayers(gpu, format, extent, 1, false, usage, out);
+}
+
+Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers,
+                         VkImageUsageFlags usage, OwnedImage& out) {
+  return createImageLayers(gpu, format, extent, layers, true, usage, out);
 }
 
 void destroyImage(const Gpu& gpu, OwnedImage& image) {
@@ -291,6 +272,36 @@ std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadowMapImageInfos(const Scat
                 used ? b.shadowLayouts[i] : b.shadowLayouts[0]};
   }
   return infos;
+}
+
+Outcome createSampler(const Gpu& gpu, VkFilter filter, VkSamplerAddressMode addressV, VkSampler& out) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = filter;
+  info.minFilter = filter;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  info.addressModeV = addressV;
+  info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  VkResult result = gpu.vk.vkCreateSampler(gpu.device, &info, gpu.allocator, &out);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateSampler", result);
+}
+
+Outcome createLayouts(const Gpu& gpu, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                      const VkPushConstantRange* push, VkDescriptorSetLayout& setLayout,
+                      VkPipelineLayout& pipelineLayout) {
+  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  layoutInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
+  layoutInfo.pBindings = bindings.data();
+  VkResult result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout);
+  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
+
+  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pipelineLayoutInfo.setLayoutCount = 1;
+  pipelineLayoutInfo.pSetLayouts = &setLayout;
+  pipelineLayoutInfo.pushConstantRangeCount = push != nullptr ? 1 : 0;
+  pipelineLayoutInfo.pPushConstantRanges = push;
+  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreatePipelineLayout", result);
 }
 
 Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,

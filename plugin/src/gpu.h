@@ -49,13 +49,6 @@ Outcome createImageArray(const Gpu& gpu, VkFormat format, VkExtent2D extent, std
                          VkImageUsageFlags usage, OwnedImage& out);
 void destroyImage(const Gpu& gpu, OwnedImage& image);
 
-/// Whether frame `lastFrame` has completed while frame `frameIndex` is being recorded, with
-/// `framesInFlight` frames in flight (frame f has, once frame f + framesInFlight is): what it used
-/// may then be destroyed.
-inline bool frameCompleted(std::uint64_t lastFrame, std::uint64_t frameIndex, std::uint32_t framesInFlight) {
-  return lastFrame + framesInFlight <= frameIndex;
-}
-
 /// A persistently mapped, host-coherent buffer (per-frame constants).
 struct MappedBuffer {
   VkBuffer buffer = VK_NULL_HANDLE;
@@ -109,6 +102,14 @@ using LightPipelines = std::array<VkPipeline, 3>;
 Outcome createLightPipelines(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
                              LightPipelines& out);
 void destroyPipelines(const Gpu& gpu, std::span<VkPipeline> pipelines);
+/// A sampler without mip levels: `filter` both ways, clamped to the edge along u and w, `addressV`
+/// along v.
+Outcome createSampler(const Gpu& gpu, VkFilter filter, VkSamplerAddressMode addressV, VkSampler& out);
+/// A pass's one descriptor set layout of `bindings` and its pipeline layout (that set, and the
+/// push-constant range when `push` is given).
+Outcome createLayouts(const Gpu& gpu, std::span<const VkDescriptorSetLayoutBinding> bindings,
+                      const VkPushConstantRange* push, VkDescriptorSetLayout& setLayout,
+                      VkPipelineLayout& pipelineLayout);
 /// A pool holding exactly `sets.size()` sets of `layout` (one per frame slot), and the sets.
 Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
                                std::span<const VkDescriptorPoolSize> perSetSizes, VkDescriptorPool& pool,

@@ -11,17 +11,7 @@ Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
       {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, &nearest},
       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, &nearest},
   }};
-  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layoutInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
-  layoutInfo.pBindings = bindings.data();
-  VkResult result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
-
-  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pipelineLayoutInfo.setLayoutCount = 1;
-  pipelineLayoutInfo.pSetLayouts = &setLayout_;
-  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+  if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
   if (Outcome o = createShaderModule(gpu, shaders::composite_vert(), vertex_); !o) return o;
   if (Outcome o = createShaderModule(gpu, shaders::composite_frag(), fragment_); !o) return o;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 
 #include "epipolar/scattering_lut.h"
 #include "tyndall_shaders.h"
@@ -121,20 +122,8 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
       {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
-  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layoutInfo.bindingCount = kBindings;
-  layoutInfo.pBindings = bindings.data();
-  VkResult result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
-
   const VkPushConstantRange push{stage, 0, sizeof(gpu::EpipolarConstants)};
-  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pipelineLayoutInfo.setLayoutCount = 1;
-  pipelineLayoutInfo.pSetLayouts = &setLayout_;
-  pipelineLayoutInfo.pushConstantRangeCount = 1;
-  pipelineLayoutInfo.pPushConstantRanges = &push;
-  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+  if (Outcome o = createLayouts(gpu, bindings, &push, setLayout_, pipelineLayout_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
@@ -253,15 +242,13 @@ void EpipolarTechnique::destroyTextures(const Gpu& gpu, SampleTextures& textures
 void EpipolarTechnique::destroySizeDependent(const Gpu& gpu) { destroyBuffer(gpu, fixupList_); }
 
 void EpipolarTechnique::destroy(const Gpu& gpu) {
-  for (Retired& retired : retired_) destroyTextures(gpu, retired.textures);
-  retired_.clear();
+  retired_.destroyAll([&](SampleTextures& textures) { destroyTextures(gpu, textures); });
   destroyTextures(gpu, textures_);
   destroySizeDependent(gpu);
   destroyBuffer(gpu, fixupArgs_);
   destroyImage(gpu, scatteringLut_);
   destroyImage(gpu, scatteringLutPlaceholder_);
-  for (auto& [lastFrame, image] : retiredShadowBlocks_) destroyImage(gpu, image);
-  retiredShadowBlocks_.clear();
+  retiredShadowBlocks_.destroyAll([&](OwnedImage& image) { destroyImage(gpu, image); });
   destroyImage(gpu, shadowBlocks_);
   destroyImage(gpu, shadowBlocksPlaceholder_);
   for (MappedBuffer& buffer : fixupReadback_) destroyBuffer(gpu, buffer);
@@ -304,30 +291,17 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   };
   if (!fits(textures_)) {
     if (textures_.slices != 0) {
-      retired_.push_back({frameIndex == 0 ? 0 : frameIndex - 1, textures_});
+      retired_.retire(frameIndex, textures_);
       textures_ = SampleTextures{};
     }
     // A set of these sizes retired by an earlier switch serves again, so that switching between
-    // profiles allocates nothing once each has run. Frames still in flight with it are ordered
-    // before this one by the barriers every frame starts with (as for a set kept frame to frame).
-    auto spare = std::find_if(retired_.begin(), retired_.end(), [&](const Retired& r) { return fits(r.textures); });
-    if (spare != retired_.end()) {
-      textures_ = spare->textures;
-      retired_.erase(spare);
-    }
+    // profiles allocates nothing once each has run.
+    if (std::optional<SampleTextures> spare = retired_.take(fits)) textures_ = *spare;
   }
   // The kSpareTextureSets most recently retired sets are kept; older ones are destroyed once no
   // frame in flight uses them.
-  std::size_t excess = retired_.size() > kSpareTextureSets ? retired_.size() - kSpareTextureSets : 0;
-  for (auto it = retired_.begin(); excess > 0 && it != retired_.end();) {
-    if (frameCompleted(it->lastFrame, frameIndex, framesInFlight)) {
-      destroyTextures(gpu, it->textures);
-      it = retired_.erase(it);
-      --excess;
-    } else {
-      ++it;
-    }
-  }
+  retired_.release(frameIndex, framesInFlight, [&](SampleTextures& textures) { destroyTextures(gpu, textures); },
+                   kSpareTextureSets);
   if (textures_.slices != 0) return {};
   SampleTextures fresh;
   fresh.slices = settings.slices;
@@ -367,15 +341,11 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
 
 Outcome EpipolarTechnique::prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
                                                std::uint32_t framesInFlight) {
-  std::erase_if(retiredShadowBlocks_, [&](std::pair<std::uint64_t, OwnedImage>& retired) {
-    if (!frameCompleted(retired.first, frameIndex, framesInFlight)) return false;
-    destroyImage(gpu, retired.second);
-    return true;
-  });
+  retiredShadowBlocks_.release(frameIndex, framesInFlight, [&](OwnedImage& image) { destroyImage(gpu, image); });
   shadowBlocksUsed_ = side != 0;
   if (side == 0 || side == shadowBlocks_.extent.width) return {};
   if (shadowBlocks_.image != VK_NULL_HANDLE) {
-    retiredShadowBlocks_.emplace_back(frameIndex == 0 ? 0 : frameIndex - 1, shadowBlocks_);
+    retiredShadowBlocks_.retire(frameIndex, shadowBlocks_);
     shadowBlocks_ = OwnedImage{};
   }
   if (Outcome o = createImage(gpu, kShadowBlockFormat, {side, side}, kSampleUsage, shadowBlocks_); !o) {

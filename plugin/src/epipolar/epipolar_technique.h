@@ -8,12 +8,12 @@
 #include <array>
 #include <cstdint>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "common/shared_constants.h"
 #include "epipolar/epipolar_constants.h"
 #include "gpu.h"
+#include "retire_queue.h"
 #include "timing.h"
 
 namespace tyndall {
@@ -87,10 +87,6 @@ class EpipolarTechnique {
     std::uint32_t samples = 0;
     std::uint32_t treeWidth = 0;
   };
-  struct Retired {
-    std::uint64_t lastFrame = 0;
-    SampleTextures textures;
-  };
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);
   Outcome prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
                               std::uint32_t framesInFlight);
@@ -141,11 +137,11 @@ class EpipolarTechnique {
   OwnedImage shadowBlocks_;  // extent: blocks along each side; 0 before the first
   OwnedImage shadowBlocksPlaceholder_;
   bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
-  std::vector<std::pair<std::uint64_t, OwnedImage>> retiredShadowBlocks_;  // last frame, image
+  RetireQueue<OwnedImage> retiredShadowBlocks_;
   // Size-dependent.
   MappedBuffer fixupList_;                   // count, then one packed pixel per entry
   SampleTextures textures_;
-  std::vector<Retired> retired_;  // oldest first; see kSpareTextureSets
+  RetireQueue<SampleTextures> retired_;  // see kSpareTextureSets
   std::uint64_t frameIndex_ = 0;
 };
 

@@ -129,20 +129,9 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
   return {};
 }
 
-Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler lightColorSampler, std::uint32_t slots) {
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = VK_FILTER_LINEAR;
-  samplerInfo.minFilter = VK_FILTER_LINEAR;
-  samplerInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  VkResult result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &linear_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
   // Rows of a full-circle non-linear map continue across φ = ±π.
-  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  result = gpu.vk.vkCreateSampler(gpu.device, &samplerInfo, gpu.allocator, &prefixSampler_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateSampler", result);
+  if (Outcome o = createSampler(gpu, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, prefixSampler_); !o) return o;
 
   for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
     const Storage& s = kStorage[i];
@@ -161,7 +150,7 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
       {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
       {4, storage, 1, stage, nullptr},
       {5, storage, 1, stage, nullptr},
-      {6, image, 1, stage, &linear_},
+      {6, image, 1, stage, &linear},
       {7, storage, 1, stage, nullptr},
       {8, image, 1, stage, nearestSamplers.data()},
       {9, image, 1, stage, nearestSamplers.data()},
@@ -172,18 +161,9 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
       {14, storage, 1, stage, nullptr},
       {15, storage, 1, stage, nullptr},
       {16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
-      {17, image, 1, stage, &lightColorSampler},
+      {17, image, 1, stage, &linear},
   }};
-  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layoutInfo.bindingCount = kBindings;
-  layoutInfo.pBindings = bindings.data();
-  result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
-  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pipelineLayoutInfo.setLayoutCount = 1;
-  pipelineLayoutInfo.pSetLayouts = &setLayout_;
-  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+  if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
@@ -241,8 +221,7 @@ Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
 }
 
 void PrefilteredTechnique::destroy(const Gpu& gpu) {
-  for (Retired& retired : retired_) destroyMaps(gpu, retired.maps);
-  retired_.clear();
+  retired_.destroyAll([&](Maps& maps) { destroyMaps(gpu, maps); });
   destroyMaps(gpu, maps_);
   destroyBuffer(gpu, fixupArgs_);
   for (MappedBuffer& buffer : constants_) destroyBuffer(gpu, buffer);
@@ -260,7 +239,6 @@ void PrefilteredTechnique::destroy(const Gpu& gpu) {
   if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
   if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
   if (prefixSampler_ != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, prefixSampler_, gpu.allocator);
-  if (linear_ != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, linear_, gpu.allocator);
   *this = PrefilteredTechnique{};
 }
 
@@ -273,7 +251,7 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, st
   }
   // Frames still in flight may use the old maps: they are destroyed once those have completed.
   if (maps_.columns != 0) {
-    retired_.push_back({frameIndex == 0 ? 0 : frameIndex - 1, maps_});
+    retired_.retire(frameIndex, maps_);
     maps_ = Maps{};
   }
   const Storage& s = kStorage[basis];
@@ -302,11 +280,7 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, st
 Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
                                       bool scatters, VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
                                       std::uint32_t framesInFlight, std::string& note) {
-  std::erase_if(retired_, [&](Retired& retired) {
-    if (!frameCompleted(retired.lastFrame, frameIndex, framesInFlight)) return false;
-    destroyMaps(gpu, retired.maps);
-    return true;
-  });
+  retired_.release(frameIndex, framesInFlight, [&](Maps& maps) { destroyMaps(gpu, maps); });
 
   const std::uint32_t basis = static_cast<std::uint32_t>(settings.basis);
   const Storage& storage = kStorage[basis];

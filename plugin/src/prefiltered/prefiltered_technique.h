@@ -15,6 +15,7 @@
 #include "common/shared_constants.h"
 #include "gpu.h"
 #include "prefiltered/prefiltered_constants.h"
+#include "retire_queue.h"
 #include "timing.h"
 
 namespace tyndall {
@@ -28,9 +29,9 @@ class PrefilteredTechnique {
 
   /// Pipelines of every storage variant and both prefix-sum schemes, the descriptor sets and the
   /// per-slot constant buffers: nothing here depends on the output, the settings or the frame.
-  /// `lightColorSampler`: linear, clamp to edge (the epipole block's Reference walk reads the
-  /// light-colour texture through it).
-  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler lightColorSampler, std::uint32_t slots);
+  /// `linear`: linear, clamp to edge (the moment map's bilinear lookups, and the light-colour
+  /// texture the epipole block's Reference walk reads).
+  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots);
   /// Compiles the technique's pipelines (at context creation, in Context::warmUp, or in the first
   /// frame that runs it with PipelineCreation::OnFirstUse).
   Outcome createPipelines(const Gpu& gpu);
@@ -64,16 +65,11 @@ class PrefilteredTechnique {
     std::uint32_t sets = 0;
     std::uint32_t momentMapSize = 0;
   };
-  struct Retired {
-    std::uint64_t lastFrame = 0;
-    Maps maps;
-  };
   Outcome ensureMaps(const Gpu& gpu, std::uint32_t basis, std::uint32_t columns, std::uint32_t rows,
                      std::uint32_t sets, std::uint32_t momentMapSize, std::uint64_t frameIndex);
   void destroyMaps(const Gpu& gpu, Maps& maps);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
 
-  VkSampler linear_ = VK_NULL_HANDLE;       // clamp to edge: the moment map
   VkSampler prefixSampler_ = VK_NULL_HANDLE;  // linear, clamp along u, repeat along v
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
@@ -92,7 +88,7 @@ class PrefilteredTechnique {
   std::vector<MappedBuffer> constants_;  // per slot: PrefilteredConstants
   MappedBuffer fixupArgs_;               // PrefilteredFixupArgs
   Maps maps_;
-  std::vector<Retired> retired_;
+  RetireQueue<Maps> retired_;
 
   // This frame's choices (prepare → record).
   struct FramePlan {

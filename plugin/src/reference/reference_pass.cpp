@@ -15,17 +15,7 @@ Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linea
       {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, &linear},
   }};
-  VkDescriptorSetLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  layoutInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
-  layoutInfo.pBindings = bindings.data();
-  VkResult result = gpu.vk.vkCreateDescriptorSetLayout(gpu.device, &layoutInfo, gpu.allocator, &setLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreateDescriptorSetLayout", result);
-
-  VkPipelineLayoutCreateInfo pipelineLayoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  pipelineLayoutInfo.setLayoutCount = 1;
-  pipelineLayoutInfo.pSetLayouts = &setLayout_;
-  result = gpu.vk.vkCreatePipelineLayout(gpu.device, &pipelineLayoutInfo, gpu.allocator, &pipelineLayout_);
-  if (result != VK_SUCCESS) return vkFailed("vkCreatePipelineLayout", result);
+  if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 3> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},

@@ -2,7 +2,8 @@
 # Measures the prefiltered technique against the Reference: per storage variant and scene, the
 # relative RMSE of L_in (tyndall-compare against the Reference's AOV from the same build and
 # device), the GPU time of each prefiltered pass (timestamps, median over the frames) and Tyndall's
-# total, next to the Reference's. Writes out/measure-prefiltered/* and prints one table row per run.
+# total, next to the Reference's (and the ratio of the two: the speedup of the scattering passes,
+# the composite left out of both). Writes out/measure-prefiltered/* and prints one table row per run.
 # Usage: scripts/measure-prefiltered.sh [build-dir] (default: build)
 # Environment: SCENES (default: the directional scenes), BASES (default: all six), SIZE (640x360),
 #   SHADOW_MAP (1024), FRAMES (3), PREFILTERED (extra --prefiltered keys, e.g. "rows=512,columns=512").
@@ -19,8 +20,8 @@ w="${size%x*}"; h="${size#*x}"
 map="${SHADOW_MAP:-1024}"
 frames="${FRAMES:-3}"
 extra="${PREFILTERED:-}"
-printf '| scene | variant | relative RMSE | moment map | rectify | prefix sums | evaluate | epipole block | prefiltered total ms | Reference ms |\n'
-printf '|---|---|---|---|---|---|---|---|---|---|\n'
+printf '| scene | variant | relative RMSE | moment map | rectify | prefix sums | evaluate | epipole block | prefiltered total ms | Reference ms | speedup |\n'
+printf '|---|---|---|---|---|---|---|---|---|---|---|\n'
 for scene in ${SCENES:-pillars fence forest window-room analytic-spheres analytic-boxes analytic-mixed}; do
   ref="$out/$scene-$size-reference"
   "$render" "samples/scenes/$scene.json" --technique reference --width "$w" --height "$h" \
@@ -39,10 +40,11 @@ r = json.load(open(sys.argv[3]))
 p = t["passMilliseconds"]
 block = p.get("prefiltered_epipole_fixup_args", 0) + p.get("prefiltered_epipole_fixup", 0)
 total = sum(v for k, v in p.items() if k.startswith("prefiltered_"))
+ref = r["passMilliseconds"].get("reference_scattering", 0)
 print(f"| {sys.argv[4]} | {sys.argv[5]} | {e['relativeRmse'] * 100:.2f}% | "
       f"{p.get('prefiltered_moment_shadow_map', 0):.1f} | {p.get('prefiltered_rectify', 0):.1f} | "
       f"{p.get('prefiltered_prefix_sums', 0):.1f} | {p.get('prefiltered_evaluate', 0):.1f} | {block:.1f} | "
-      f"{total:.1f} | {r['passMilliseconds'].get('reference_scattering', 0):.1f} |")
+      f"{total:.1f} | {ref:.1f} | {ref / total:.1f}x |")
 PY
   done
 done

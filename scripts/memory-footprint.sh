@@ -23,20 +23,19 @@ for size in $sizes; do printf -- '---|'; done
 printf '\n'
 for scene in ${SCENES:-pillars spot-lamp}; do
   for profile in ${PROFILES:-reference high balanced performance}; do
-    row="| $scene | $profile |"
-    technique=""
+    cells=""
     for size in $sizes; do
       w="${size%x*}"; h="${size#*x}"
       run="$out/$scene-$size-$profile.json"
       "$render" "samples/scenes/$scene.json" --profile "$profile" --width "$w" --height "$h" \
         --shadow-map-size "$map" --frames 1 --timings "$run" --output "$out/$scene-$size-$profile.png" >/dev/null
-      read -r tech mib < <(python3 -c '
+      # The technique is the profile's, the same at every size: the last run's is printed.
+      read -r technique mib < <(python3 -c '
 import json, sys
 t = json.load(open(sys.argv[1]))
 print(t["technique"], "%.1f" % (t["deviceMemoryBytes"] / 2**20))' "$run")
-      technique="$tech"
-      row="$row $mib |"
+      cells="$cells $mib |"
     done
-    printf '%s\n' "${row/| $scene | $profile |/| $scene | $profile | $technique |}"
+    printf '| %s | %s | %s |%s\n' "$scene" "$profile" "$technique" "$cells"
   done
 done

@@ -1,6 +1,7 @@
 #include "report.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -150,7 +151,7 @@ std::vector<PlotPoint> plotPoints(const std::vector<Summary>& summaries, const s
     for (const ProfileChoiceResult& c : choice) {
       if (c.summary != i) continue;
       if (!p.marker.empty()) p.marker += '/';
-      p.marker += c.goal.profile;
+      p.marker += c.goal.name();
     }
     points.push_back(p);
     summaryOf.push_back(i);
@@ -209,20 +210,23 @@ std::vector<Summary> summarize(const std::vector<Row>& rows, std::uint32_t width
 const std::vector<ProfileGoal>& profileGoals() {
   // The goals ("Goals the benchmark must show"): error bars and speedups over the Reference.
   static const std::vector<ProfileGoal> goals{
-      {"High", 0.02, 12.0, 0.0, 0.03},
-      {"Balanced", 0.04, 25.0, 0.0, 0.06},
-      {"Performance", 0.08, 50.0, 4.0, 0.16},
+      {Profile::High, 0.02, 12.0, 0.0, 0.03},
+      {Profile::Balanced, 0.04, 25.0, 0.0, 0.06},
+      {Profile::Performance, 0.08, 50.0, 4.0, 0.16},
   };
   return goals;
 }
 
+std::string ProfileGoal::name() const {
+  std::string n = to_string(profile);
+  n[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(n[0])));
+  return n;
+}
+
 const ProfileGoal* profileGoal(Profile profile) {
-  switch (profile) {
-    case Profile::High: return &profileGoals()[0];
-    case Profile::Balanced: return &profileGoals()[1];
-    case Profile::Performance: return &profileGoals()[2];
-    default: return nullptr;
-  }
+  const std::vector<ProfileGoal>& goals = profileGoals();
+  auto it = std::find_if(goals.begin(), goals.end(), [&](const ProfileGoal& g) { return g.profile == profile; });
+  return it != goals.end() ? &*it : nullptr;
 }
 
 std::vector<ProfileChoiceResult> chooseProfiles(const std::vector<Summary>& summaries) {
@@ -413,7 +417,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
     if (!c.summary) continue;
     const Summary& s = chosenGroup[*c.summary];
     nlohmann::ordered_json j;
-    j["profile"] = c.goal.profile;
+    j["profile"] = c.goal.name();
     j["technique"] = s.technique;
     j["parameters"] = s.parameters;
     j["speedup"] = s.timeRatioToReference > 0.0 ? 1.0 / s.timeRatioToReference : 0.0;
@@ -429,11 +433,11 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
                                   ? ", ≤ " + format("%.0f×", c.goal.maxTimeOverFloor) + " floor " +
                                         (c.floorMet ? "met" : "**missed**")
                                   : "");
-    choiceTable += std::string("| ") + c.goal.profile + " | " + s.technique + " | `" + s.parameters + "` | " +
+    choiceTable += "| " + c.goal.name() + " | " + s.technique + " | `" + s.parameters + "` | " +
                    speedup(s.timeRatioToReference) + " | " + format("%.2f", s.timeRatioToFloor) + " | " +
                    percent(s.relativeRmse) + " | " + percent(s.worstRelativeRmse) + " (" + s.worstScene + ") | " +
                    goal + " |\n";
-    if (std::string(c.goal.profile) == "Performance") {
+    if (c.goal.profile == Profile::Performance) {
       goalsText += "- Performance's time varies by " + percent(s.timeSpread) +
                    " of its median across the scenes ((max − min) / median; goal < 15%: " +
                    (s.timeSpread < 0.15 ? "met" : "**missed**") + ").\n";
@@ -452,7 +456,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
           r.height != context.chooseHeight || r.shadowMap != context.chooseShadowMap) {
         continue;
       }
-      perScene += std::string("| ") + c.goal.profile + " | " + r.scene + " | " + format("%.3f", r.totalMilliseconds) +
+      perScene += "| " + c.goal.name() + " | " + r.scene + " | " + format("%.3f", r.totalMilliseconds) +
                   " | " + speedup(r.timeRatioToReference) + " | " + format("%.2f", r.timeRatioToFloor) + " | " +
                   percent(r.relativeRmse) + " | " + percent(r.relativeP99) + " | " + format("%.2f", r.temporalRatio) +
                   " |\n";
@@ -482,7 +486,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   std::string bars;
   for (const ProfileGoal& goal : profileGoals()) {
     if (goal.maxSceneRelativeRmse <= 0.0) continue;
-    bars += std::string(bars.empty() ? "" : ", ") + goal.profile + " " + format("%g%%", 100.0 * goal.maxSceneRelativeRmse);
+    bars += std::string(bars.empty() ? "" : ", ") + goal.name() + " " + format("%g%%", 100.0 * goal.maxSceneRelativeRmse);
   }
   doc += "## The choice\n\n";
   doc += "At " + chosenAt + ", per profile: of the configurations that meet the bar the profile's tests hold "

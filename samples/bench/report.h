@@ -42,7 +42,7 @@ std::vector<Summary> summarize(const std::vector<Row>& rows, std::uint32_t width
 /// where the front allows — or, if none is fast enough, the fastest (a miss). Whether it meets the
 /// error goal is reported.
 struct ProfileGoal {
-  const char* profile;         ///< "High", "Balanced", "Performance"
+  Profile profile;             ///< High, Balanced, Performance
   double maxRelativeRmse;      ///< 0.02, 0.04, 0.08
   double minSpeedup;           ///< 12, 25, 50 (Reference time / time)
   double maxTimeOverFloor;     ///< 4 for Performance, 0: none
@@ -51,6 +51,9 @@ struct ProfileGoal {
   /// A scene on which no configuration meets it does not decide between them (stained-glass: a
   /// documented miss of every configuration).
   double maxSceneRelativeRmse;
+
+  /// The profile's name as the documents write it: "High", "Balanced", "Performance".
+  std::string name() const;
 };
 const std::vector<ProfileGoal>& profileGoals();
 /// The goal of High, Balanced or Performance (the tests' bars read it too); nullptr for the others.

@@ -408,7 +408,7 @@ const std::vector<std::string> kDirectionalPasses = {
 
 // The passes follow what the frame needs (DESIGN.md "Model only what the scene requires"): a
 // directional light records no scattering table; a frame without in-scattering (σ_s = 0, σ_a > 0)
-// records only the unwarp, which writes the exact T (the Reference's, to the bit) and L_in = 0.
+// records only the unwarp, which writes L_in = 0; T is the composite's, the Reference's to the bit.
 TEST(EpipolarPasses, FollowTheFrame) {
   host::Scene scene = loadTestScene("analytic-mixed");
   samples::RenderOptions o = options(Technique::Epipolar);

@@ -293,7 +293,7 @@ TEST(Prefiltered, PassesFollowTheFrame) {
                               options(Technique::Prefiltered));
   EXPECT_FALSE(anyStartsWith(r.stats.passesRecorded, "prefiltered_epipole_fixup"));
 
-  // No in-scattering (σ_s = 0, σ_a > 0): only T is computed, by the evaluation pass.
+  // No in-scattering (σ_s = 0, σ_a > 0): the evaluation pass writes L_in = 0, T is the composite's.
   host::Scene absorbing = scene;
   for (host::MediumComponent& m : absorbing.medium) {
     m.absorption += m.scattering;

@@ -59,10 +59,15 @@ ImageUse hostAfter(const ImageRef& image) {
           VK_ACCESS_MEMORY_READ_BIT | VK_ACCESS_MEMORY_WRITE_BIT};
 }
 
+// The host's depth buffer is read by a technique's compute passes, by the composite's fragment
+// shader (T) and by the T AOV's compute pass.
+constexpr VkPipelineStageFlags kDepthReaders =
+    VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
 constexpr VkImageUsageFlags kTargetUsage =
     VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
-// L_in and T are kept in full float: the Reference is the validation path and the AOVs are
-// compared against double-precision references.
+// L_in is kept in full float: the Reference is the validation path and the AOVs are compared
+// against double-precision references. The same target holds T for the T AOV's copy once L_in
+// has been composited and copied (Context::Impl::recordAovs): T needs no target of its own.
 constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // The largest point-light map whose texel walk stays within lavapipe's loop budget (measured,
 // docs/REFERENCE.md "Loop budget on lavapipe"); the frame's note says so above it on a CPU driver.
@@ -148,7 +153,6 @@ struct Context::Impl {
   std::uint64_t lastTimedFrame = ~0ull;  // the latest frame whose time went to autoProfile
   // Size-dependent.
   OwnedImage scattering;
-  OwnedImage transmittance;
   OwnedImage debugImage;  // created at the first frame that draws a debug view
   Stats stats;
 
@@ -170,7 +174,7 @@ struct Context::Impl {
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
                         const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable, bool scatters);
-  void recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets);
+  void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets);
 };
 
 Outcome Context::Impl::createSizeIndependent() {
@@ -238,13 +242,11 @@ Outcome Context::Impl::ensurePipelines(Technique technique, const FrameDesc& fra
 
 Outcome Context::Impl::createSizeDependent() {
   if (Outcome o = epipolar.resize(gpu, extent); !o) return o;
-  if (Outcome o = createImage(gpu, kTargetFormat, extent, kTargetUsage, scattering); !o) return o;
-  return createImage(gpu, kTargetFormat, extent, kTargetUsage, transmittance);
+  return createImage(gpu, kTargetFormat, extent, kTargetUsage, scattering);
 }
 
 void Context::Impl::destroySizeDependent() {
   destroyImage(gpu, debugImage);
-  destroyImage(gpu, transmittance);
   destroyImage(gpu, scattering);
 }
 
@@ -485,13 +487,17 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
     stats.technique = Technique::None;
     stats.techniqueNote = "medium has no extinction: the back buffer is left as it is";
-    recordAovs(cmd, frame, false);
+    recordAovs(cmd, slot, frame, false);
   } else {
     stats.technique = technique;
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
     recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable, setup.scatters);
-    recordAovs(cmd, frame, true);
+    recordAovs(cmd, slot, frame, true);
+    // The host's depth buffer, which recordScattering acquired: read by the technique, the
+    // composite and the T AOV's pass.
+    imageBarrier(gpu, cmd, frame.depth.image, barrierAspect(frame.depth.format), frame.depth.arrayLayer,
+                 {sampledDepthLayout(frame.depth.layout), kDepthReaders, 0}, hostAfter(frame.depth));
   }
 
   if (const FrameTimings* latest = timer.latest()) {
@@ -520,13 +526,10 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   // timestamp when it next flushes, and a barrier flushes, so the stamps then bracket the work.
   const bool bruteForce = technique == Technique::Reference;
   if (bruteForce) timer.beginPass(gpu, cmd, "reference_scattering");
-  // Tyndall's targets: the previous frame's reads must finish before they are overwritten;
-  // the old contents are discarded.
-  for (const OwnedImage* target : {&scattering, &transmittance}) {
-    imageBarrier(gpu, cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                 {VK_IMAGE_LAYOUT_UNDEFINED, readers, 0},
-                 {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
-  }
+  // Tyndall's target: the previous frame's reads must finish before it is overwritten; the old
+  // contents are discarded.
+  imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, readers, 0},
+               {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
 
   // Host inputs: depth buffer and shadow maps, sampled by the compute pass.
   ScatteringBindings bindings;
@@ -536,16 +539,16 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   bindings.light = frame.light.type;
   bindings.scatters = scatters;
   bindings.scattering = scattering.view;
-  bindings.transmittance = transmittance.view;
-  auto acquireDepth = [&](const ImageRef& image, VkImageLayout layout) {
+  auto acquireDepth = [&](const ImageRef& image, VkImageLayout layout, VkPipelineStageFlags stages) {
     imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, hostBefore(image),
-                 {layout, compute, VK_ACCESS_SHADER_READ_BIT});
+                 {layout, stages, VK_ACCESS_SHADER_READ_BIT});
   };
   auto releaseDepth = [&](const ImageRef& image, VkImageLayout layout) {
     imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, {layout, compute, 0},
                  hostAfter(image));
   };
-  acquireDepth(frame.depth, bindings.depthLayout);
+  // The depth buffer stays acquired until the T AOV (Impl::record releases it).
+  acquireDepth(frame.depth, bindings.depthLayout, kDepthReaders);
   // The light-colour texture, or the white texel (cleared once, in the first frame that needs it).
   if (!frame.lightColor.empty()) {
     bindings.lightColor = frame.lightColor.view;
@@ -572,7 +575,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     const ImageRef& map = frame.shadowMaps[i].depth;
     bindings.shadowMaps[i] = map.view;
     bindings.shadowLayouts[i] = sampledDepthLayout(map.layout);
-    acquireDepth(map, bindings.shadowLayouts[i]);
+    acquireDepth(map, bindings.shadowLayouts[i], compute);
   }
 
   if (frame.debugView != DebugView::None && !bruteForce) {
@@ -592,7 +595,6 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, frame.light.type, buildScatteringTable, extent, timer,
                     stats.passesRecorded);
   }
-  releaseDepth(frame.depth, bindings.depthLayout);
   if (!frame.lightColor.empty()) {
     imageBarrier(gpu, cmd, frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
                  {bindings.lightColorLayout, compute, 0}, hostAfter(frame.lightColor));
@@ -600,12 +602,9 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
     releaseDepth(frame.shadowMaps[i].depth, bindings.shadowLayouts[i]);
   }
-  for (const OwnedImage* target : {&scattering, &transmittance}) {
-    imageBarrier(gpu, cmd, target->image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                 {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
-                 {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT});
-  }
+  imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+               {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
+               {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT});
 
   // Composite into the back buffer.
   const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
@@ -614,7 +613,8 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   timer.beginPass(gpu, cmd, "composite");
   imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
                hostBefore(frame.color), {attachment, output, blend});
-  composite.record(gpu, cmd, slot, scattering.view, transmittance.view, frame.color, attachment);
+  composite.record(gpu, cmd, slot, constants[slot].buffer, frame.depth, bindings.depthLayout, scattering.view,
+                   frame.color, attachment);
   timer.endPass(gpu, cmd);
   stats.passesRecorded.emplace_back("composite");
   imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
@@ -622,37 +622,49 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
 }
 
 // Copies L_in and T to the host's AOV images (blit: converts to their format), or, when
-// nothing was computed, clears them to L_in = 0 and T = 1.
-void Context::Impl::recordAovs(VkCommandBuffer cmd, const FrameDesc& frame, bool fromTargets) {
-  const std::array<std::pair<const ImageRef*, const OwnedImage*>, 2> outputs{{
-      {&frame.scatteringOutput, &scattering},
-      {&frame.transmittanceOutput, &transmittance},
-  }};
+// nothing was computed, clears them to L_in = 0 and T = 1. T has no target of its own: once L_in
+// is composited and copied, its target receives T from the composite's own formula, then is copied.
+void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets) {
+  const std::array<const ImageRef*, 2> outputs{&frame.scatteringOutput, &frame.transmittanceOutput};
   if (frame.scatteringOutput.empty() && frame.transmittanceOutput.empty() && frame.debugOutput.empty()) return;
 
   const char* pass = fromTargets ? "aov_output" : "aov_clear";
   timer.beginPass(gpu, cmd, pass);
-  for (const auto& [output, source] : outputs) {
+  // The target as the composite left it; then as each step below leaves it.
+  ImageUse target{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0};
+  for (const ImageRef* output : outputs) {
     if (output->empty()) continue;
+    const bool isTransmittance = output == &frame.transmittanceOutput;
     const VkImageLayout layout = keepGeneral(output->layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     const ImageUse transferWrite{layout, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
     imageBarrier(gpu, cmd, output->image, VK_IMAGE_ASPECT_COLOR_BIT, output->arrayLayer, hostBefore(*output),
                  transferWrite);
     const VkImageSubresourceLayers dstLayers{VK_IMAGE_ASPECT_COLOR_BIT, 0, output->arrayLayer, 1};
     if (fromTargets) {
-      // The composite read the target; the blit reads it in the layout transfers prefer.
-      imageBarrier(gpu, cmd, source->image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                   {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0},
-                   {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
+      if (isTransmittance) {
+        // L_in's reads (the composite's, its copy's) finish before T overwrites it.
+        const ImageUse computeWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                                    VK_ACCESS_SHADER_WRITE_BIT};
+        imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, target.stage, 0},
+                     computeWrite);
+        composite.recordTransmittance(gpu, cmd, slot, constants[slot].buffer, frame.depth,
+                                      sampledDepthLayout(frame.depth.layout), scattering.view, extent);
+        target = computeWrite;
+      }
+      // The blit reads the target in the layout transfers prefer.
+      const ImageUse transferRead{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                  VK_ACCESS_TRANSFER_READ_BIT};
+      imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, target, transferRead);
+      target = transferRead;
       VkImageBlit region{};
       region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
       region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
       region.dstSubresource = dstLayers;
       region.dstOffsets[1] = region.srcOffsets[1];
-      gpu.vk.vkCmdBlitImage(cmd, source->image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output->image, layout, 1, &region,
-                            VK_FILTER_NEAREST);
+      gpu.vk.vkCmdBlitImage(cmd, scattering.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output->image, layout, 1,
+                            &region, VK_FILTER_NEAREST);
     } else {
-      const float value = source == &scattering ? 0.0f : 1.0f;
+      const float value = isTransmittance ? 1.0f : 0.0f;
       const VkClearColorValue clear{{value, value, value, 1.0f}};
       const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, output->arrayLayer, 1};
       gpu.vk.vkCmdClearColorImage(cmd, output->image, layout, &clear, 1, &range);

@@ -116,7 +116,8 @@ Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
                                std::vector<VkDescriptorSet>& sets);
 
 /// What a scattering technique reads and writes in a frame: the host's depth buffer and shadow
-/// maps (readable by compute shaders) and Tyndall's L_in and T targets (storage, GENERAL).
+/// maps (readable by compute shaders) and Tyndall's L_in target (storage, GENERAL). T is not a
+/// technique's business: the composite computes it from the depth buffer.
 struct ScatteringBindings {
   VkBuffer constants = VK_NULL_HANDLE;  ///< FrameConstants of the slot
   VkImageView depth = VK_NULL_HANDLE;
@@ -124,13 +125,12 @@ struct ScatteringBindings {
   std::array<VkImageView, kMaxShadowMaps> shadowMaps{};
   std::array<VkImageLayout, kMaxShadowMaps> shadowLayouts{};
   VkImageView scattering = VK_NULL_HANDLE;
-  VkImageView transmittance = VK_NULL_HANDLE;
   /// The light-colour texture (readable by compute shaders), or a white texel without one.
   VkImageView lightColor = VK_NULL_HANDLE;
   VkImageLayout lightColorLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   bool hasLightColor = false;
   LightType light = LightType::Directional;
-  /// Some σ_s > 0 and the light is on: L_in is computed. Otherwise only T is (L_in = 0).
+  /// Some σ_s > 0 and the light is on: L_in is computed. Otherwise the technique writes L_in = 0.
   bool scatters = true;
   /// The debug view's target (storage, GENERAL) when the frame asks for one, else null.
   VkImageView debug = VK_NULL_HANDLE;

@@ -39,7 +39,7 @@ struct FrameConstants {
                           // z: 1 if the far plane is at infinity; w: sky distance then
   uvec4 counts;           // x: light type; y: medium components; z: shadow maps; w: shadow map size
   uvec4 extent;           // xy: output extent in pixels; z: 1 when there is in-scattering
-                          // (some σ_s > 0 and the light is on), else only T is computed;
+                          // (some σ_s > 0 and the light is on), else L_in = 0 is written;
                           // w: 1 when a light-colour texture is bound (common/light_color.glsl)
 };
 

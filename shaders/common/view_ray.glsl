@@ -34,9 +34,17 @@ TynViewRay tyn_view_ray_ndc(vec2 ndc, float depth) {
   return ray;
 }
 
+// NDC of a pixel's centre (integer pixel coordinates).
+vec2 tyn_pixel_ndc(uvec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0; }
+
 // pixel: integer pixel coordinates; depth: the host's depth-buffer value there.
-TynViewRay tyn_view_ray(uvec2 pixel, float depth) {
-  return tyn_view_ray_ndc((vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0, depth);
+TynViewRay tyn_view_ray(uvec2 pixel, float depth) { return tyn_view_ray_ndc(tyn_pixel_ndc(pixel), depth); }
+
+// The view ray's transmittance exp(−σ_t s) per channel (DESIGN.md "Radiometry"). A function of the
+// depth buffer alone: the composite computes it where it multiplies the back buffer, and the T AOV
+// pass where the host asks for it, so no technique stores it.
+vec3 tyn_view_transmittance(uvec2 pixel, float depth) {
+  return exp(-frame.extinction.rgb * tyn_view_distance(tyn_pixel_ndc(pixel), depth));
 }
 
 #endif

@@ -16,7 +16,9 @@ layout(set = 0, binding = 4, rgba32f) uniform image2D epipolar_coordinates;
 // Per (sample, slice): L_in of the ray-marched sample.
 layout(set = 0, binding = 5, rgba32f) uniform image2D epipolar_scattering;
 layout(set = 0, binding = 6, rgba32f) uniform image2D out_scattering;
-layout(set = 0, binding = 7, rgba32f) uniform image2D out_transmittance;
+// Nearest and farthest depth of shadow map 0 per block of TYN_EPIPOLAR_SHADOW_BLOCK² texels
+// (shadow_blocks.comp), for a directional light's fix-up (block_walk.glsl); 1 × 1 otherwise.
+layout(set = 0, binding = 7, rg32f) uniform image2D shadow_blocks;
 // Pixels the unwarp could not interpolate, count first (read back for the stats).
 layout(set = 0, binding = 8, std430) buffer FixupList {
   uint fixup_count;
@@ -59,9 +61,6 @@ layout(set = 0, binding = 15) uniform sampler2D light_color;
 // The spot and point lights' semi-analytic scattering table (epipolar/scattering_lut.h), built by
 // scattering_lut.comp when the medium changes; a 1×1 placeholder before a local light needs it.
 layout(set = 0, binding = 16, rgba32f) uniform image2D scattering_lut;
-// Nearest and farthest depth of shadow map 0 per block of TYN_EPIPOLAR_SHADOW_BLOCK² texels
-// (shadow_blocks.comp), for a directional light's fix-up (block_walk.glsl); 1 × 1 otherwise.
-layout(set = 0, binding = 17, rg32f) uniform image2D shadow_blocks;
 // The debug view (DebugView), bound only for the debug passes.
 layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D debug_image;
 

@@ -6,7 +6,7 @@
 // next one on its surface. A pixel left with too little weight (a depth break no sample saw), or
 // whose two slices disagree by more than the slice-contrast threshold (a shaft or colour edge
 // between them, narrower than their spacing), is appended to the fix-up list. A pixel off the
-// slices' arc has L_in = 0. T is exact per pixel.
+// slices' arc has L_in = 0. T is the composite's (exact per pixel).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
@@ -31,12 +31,11 @@ void main() {
   vec2 extent = tyn_output_extent();
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-  float distance = tyn_view_distance(ndc, depth);
-  imageStore(out_transmittance, ivec2(pixel), vec4(exp(-frame.extinction.rgb * distance), 1.0));
   if (frame.extent.z == 0u) {
     imageStore(out_scattering, ivec2(pixel), vec4(0.0));
     return;
   }
+  float distance = tyn_view_distance(ndc, depth);
 
   vec2 pixel_centre = vec2(pixel) + 0.5;
   vec2 slopes = tyn_epipolar_depth_slopes(ivec2(pixel), depth);

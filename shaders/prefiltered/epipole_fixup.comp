@@ -2,7 +2,7 @@
 // The epipole block (klehm2014 Fig. 8): near the epipole view rays run almost along light rays,
 // where a rectified map has the least resolution, so the pixels of the block are ray-marched one by
 // one with the Reference's texel walk (the same shader code as the Reference and the epipolar
-// fix-up). The transmittance was written by the evaluation; only L_in is replaced.
+// fix-up). Only L_in is replaced: the composite computes T.
 #extension GL_GOOGLE_include_directive : require
 
 #include "prefiltered/prefiltered_common.glsl"

@@ -8,8 +8,8 @@
 //   - Fourier: the clamped series ½ + Σ a_k(z_r) B̄_k (klehm2014 Eq. 9, Appendix A).
 // With rayWeightTaps > 1 the lookup is K lookups along the row whose combination re-weights the
 // row's prefix sums to the pixel's own ray (weight_taps.h); the reconstruction runs once, on the
-// combined representation. The transmittance T = e^{−σ_t s} is written exactly. The storage variant
-// is a specialisation constant: this pass only samples, so it needs no format qualifier.
+// combined representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
+// The storage variant is a specialisation constant: this pass only samples, so it needs no format qualifier.
 #extension GL_GOOGLE_include_directive : require
 
 #include "prefiltered/prefiltered_common.glsl"
@@ -93,7 +93,6 @@ void main() {
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   TynViewRay ray = tyn_view_ray(pixel, depth);
   float s = ray.surface_distance;
-  imageStore(out_transmittance, ivec2(pixel), vec4(exp(-frame.extinction.rgb * s), 1.0));
   if (frame.extent.z == 0u) {
     imageStore(out_scattering, ivec2(pixel), vec4(0.0));
     return;

@@ -12,7 +12,8 @@ layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
 layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 layout(set = 0, binding = 3, std140) uniform PrefilteredBlock { PrefilteredConstants pf; };
 layout(set = 0, binding = 4, rgba32f) uniform image2D out_scattering;
-layout(set = 0, binding = 5, rgba32f) uniform image2D out_transmittance;
+// The light-colour texture (common/light_color.glsl), read by the epipole block's Reference walk.
+layout(set = 0, binding = 5) uniform sampler2D light_color;
 // Four moments of the host's signed depth, Θ4*-quantized (RGBA16_UNORM), bilinear, clamped to the edge.
 layout(set = 0, binding = 6) uniform sampler2D moment_shadow_map;
 // binding 7: the moment map as a storage image (moment_shadow_map.comp).
@@ -26,8 +27,6 @@ layout(set = 0, binding = 12) uniform sampler2DArray prefix_a;
 layout(set = 0, binding = 13) uniform sampler2DArray prefix_b;
 // bindings 14, 15: the prefix sums as storage images (storage_variants.glsl).
 layout(set = 0, binding = 16, std430) buffer FixupBlock { PrefilteredFixupArgs fixup_args; };
-// The light-colour texture (common/light_color.glsl), read by the epipole block's Reference walk.
-layout(set = 0, binding = 17) uniform sampler2D light_color;
 
 #include "common/view_ray.glsl"
 

@@ -1,6 +1,6 @@
 #version 460
-// Reference technique: per-pixel brute force (see reference_march.glsl). Writes L_in and the
-// view-ray transmittance for the composite pass.
+// Reference technique: per-pixel brute force (see reference_march.glsl). Writes L_in for the
+// composite pass, which computes the view ray's transmittance itself.
 #extension GL_GOOGLE_include_directive : require
 
 #include "common/shared_constants.h"
@@ -11,8 +11,7 @@ layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; 
 layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
 layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D out_scattering;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D out_transmittance;
-layout(set = 0, binding = 5) uniform sampler2D light_color;
+layout(set = 0, binding = 4) uniform sampler2D light_color;
 
 #include "common/view_ray.glsl"
 #include "reference/reference_march.glsl"
@@ -26,8 +25,5 @@ void main() {
   vec3 in_scattering = frame.extent.z != 0u
                            ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
                            : vec3(0.0);
-  vec3 transmittance = exp(-frame.extinction.rgb * ray.surface_distance);
-
   imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
-  imageStore(out_transmittance, ivec2(pixel), vec4(transmittance, 1.0));
 }

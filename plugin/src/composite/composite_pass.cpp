@@ -2,26 +2,88 @@
 
 #include <array>
 
+#include "common/shared_constants.h"
 #include "tyndall_shaders.h"
 
 namespace tyndall {
 
+namespace {
+
+// Binding 0: FrameConstants; 1: the host's depth buffer; 2: L_in (composite) or T (its AOV pass).
+VkWriteDescriptorSet writeAt(VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = 1;
+  w.descriptorType = type;
+  return w;
+}
+
+void writeSet(const Gpu& gpu, VkDescriptorSet set, VkBuffer constants, const ImageRef& depth,
+              VkImageLayout depthLayout, VkDescriptorType targetType, const VkDescriptorImageInfo& target) {
+  const VkDescriptorBufferInfo frame{constants, 0, sizeof(gpu::FrameConstants)};
+  const VkDescriptorImageInfo depthInfo{VK_NULL_HANDLE, depth.view, depthLayout};
+  std::array<VkWriteDescriptorSet, 3> writes{writeAt(set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
+                                             writeAt(set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
+                                             writeAt(set, 2, targetType)};
+  writes[0].pBufferInfo = &frame;
+  writes[1].pImageInfo = &depthInfo;
+  writes[2].pImageInfo = &target;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+}  // namespace
+
 Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
-  const std::array<VkDescriptorSetLayoutBinding, 2> bindings{{
-      {0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, &nearest},
-      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, &nearest},
+  const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
+  const std::array<VkDescriptorSetLayoutBinding, 3> bindings{{
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fragment, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, &nearest},
+      {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, &nearest},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
-
   if (Outcome o = createShaderModule(gpu, shaders::composite_vert(), vertex_); !o) return o;
   if (Outcome o = createShaderModule(gpu, shaders::composite_frag(), fragment_); !o) return o;
-
-  const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2};
+  const std::array<VkDescriptorPoolSize, 2> sizes{{
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+  }};
   sets_.resize(slots);
-  return allocateDescriptorSets(gpu, setLayout_, std::span(&size, 1), pool_, sets_);
+  if (Outcome o = allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_); !o) return o;
+
+  const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
+  const std::array<VkDescriptorSetLayoutBinding, 3> aovBindings{{
+      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, compute, nullptr},
+      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, &nearest},
+      {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+  }};
+  if (Outcome o = createLayouts(gpu, aovBindings, nullptr, transmittanceSetLayout_, transmittanceLayout_); !o) {
+    return o;
+  }
+  // One small pipeline, built here rather than when a frame first asks for the AOV.
+  if (Outcome o = createComputePipeline(gpu, transmittanceLayout_, shaders::transmittance_aov_comp(),
+                                        transmittancePipeline_);
+      !o) {
+    return o;
+  }
+  const std::array<VkDescriptorPoolSize, 3> aovSizes{{
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
+  }};
+  transmittanceSets_.resize(slots);
+  return allocateDescriptorSets(gpu, transmittanceSetLayout_, aovSizes, transmittancePool_, transmittanceSets_);
 }
 
 void CompositePass::destroy(const Gpu& gpu) {
+  if (transmittancePool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, transmittancePool_, gpu.allocator);
+  if (transmittancePipeline_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, transmittancePipeline_, gpu.allocator);
+  if (transmittanceLayout_ != VK_NULL_HANDLE) {
+    gpu.vk.vkDestroyPipelineLayout(gpu.device, transmittanceLayout_, gpu.allocator);
+  }
+  if (transmittanceSetLayout_ != VK_NULL_HANDLE) {
+    gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, transmittanceSetLayout_, gpu.allocator);
+  }
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (auto& [format, pipeline] : pipelines_) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   if (fragment_ != VK_NULL_HANDLE) gpu.vk.vkDestroyShaderModule(gpu.device, fragment_, gpu.allocator);
@@ -100,20 +162,12 @@ Outcome CompositePass::ensurePipeline(const Gpu& gpu, VkFormat format) {
   return {};
 }
 
-void CompositePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkImageView scattering,
-                           VkImageView transmittance, const ImageRef& color, VkImageLayout attachmentLayout) {
+void CompositePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
+                           const ImageRef& depth, VkImageLayout depthLayout, VkImageView scattering,
+                           const ImageRef& color, VkImageLayout attachmentLayout) {
   const VkDescriptorSet set = sets_[slot];
-  const std::array<VkDescriptorImageInfo, 2> images{{
-      {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-      {VK_NULL_HANDLE, transmittance, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
-  }};
-  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  write.dstSet = set;
-  write.dstBinding = 0;
-  write.descriptorCount = 2;
-  write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  write.pImageInfo = images.data();
-  gpu.vk.vkUpdateDescriptorSets(gpu.device, 1, &write, 0, nullptr);
+  writeSet(gpu, set, constants, depth, depthLayout, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+           {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
 
   VkRenderingAttachmentInfo attachment{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   attachment.imageView = color.view;
@@ -135,6 +189,18 @@ void CompositePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipelineLayout_, 0, 1, &set, 0, nullptr);
   gpu.vk.vkCmdDraw(cmd, 3, 1, 0, 0);
   gpu.vk.vkCmdEndRendering(cmd);
+}
+
+void CompositePass::recordTransmittance(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
+                                        const ImageRef& depth, VkImageLayout depthLayout, VkImageView target,
+                                        VkExtent2D extent) {
+  const VkDescriptorSet set = transmittanceSets_[slot];
+  writeSet(gpu, set, constants, depth, depthLayout, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE,
+           {VK_NULL_HANDLE, target, VK_IMAGE_LAYOUT_GENERAL});
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, transmittancePipeline_);
+  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, transmittanceLayout_, 0, 1, &set, 0, nullptr);
+  const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
+  gpu.vk.vkCmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
 }
 
 }  // namespace tyndall

@@ -15,7 +15,7 @@ namespace {
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr VkFormat kShadowBlockFormat = VK_FORMAT_R32G32_SFLOAT;  // nearest, farthest depth
-constexpr std::uint32_t kBindings = 18;
+constexpr std::uint32_t kBindings = 17;
 // march.comp's and march_args.comp's TYN_MARCH_PARTS (constant_id 1 is the light-colour switch).
 constexpr std::uint32_t kMarchPartsConstantId = 2;
 // fixup.comp's and fixup_args.comp's TYN_FIXUP_SERIAL.
@@ -120,7 +120,6 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
       {14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
       {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
   const VkPushConstantRange push{stage, 0, sizeof(gpu::EpipolarConstants)};
   if (Outcome o = createLayouts(gpu, bindings, &push, setLayout_, pipelineLayout_); !o) return o;
@@ -128,7 +127,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 11},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 10},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
   }};
   sets_.resize(slots);
@@ -398,12 +397,11 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorImageInfo source{VK_NULL_HANDLE, textures_.interpolationSource.view, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo sliceUv{VK_NULL_HANDLE, textures_.sliceUv.view, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo tree{VK_NULL_HANDLE, textures_.tree.view, VK_IMAGE_LAYOUT_GENERAL};
-  const std::array<VkDescriptorImageInfo, 5> storage{{
+  const std::array<VkDescriptorImageInfo, 4> storage{{
       {VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL},
       {VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL},
       {VK_NULL_HANDLE, textures_.scattering.view, VK_IMAGE_LAYOUT_GENERAL},
       {VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL},
-      {VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL},
   }};
   const VkDescriptorBufferInfo list{fixupList_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo args{fixupArgs_.buffer, 0, VK_WHOLE_SIZE};
@@ -438,7 +436,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   write(15, 16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &lut;
   const OwnedImage& blockImage = shadowBlocksUsed_ ? shadowBlocks_ : shadowBlocksPlaceholder_;
   const VkDescriptorImageInfo blocks{VK_NULL_HANDLE, blockImage.view, VK_IMAGE_LAYOUT_GENERAL};
-  write(16, 17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &blocks;
+  write(7, 7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &blocks;
   // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
   const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};
   std::uint32_t count = kBindings - 1;  // binding 14, the debug view, only when drawn
@@ -508,8 +506,8 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
   gpu.vk.vkCmdFillBuffer(cmd, textures_.marchList.buffer, 0, kMarchHeaderWords * sizeof(std::uint32_t), 0);
 
-  // Without in-scattering (σ_s = 0 or the light off) only the unwarp runs: it writes the exact T
-  // and L_in = 0 (DESIGN.md "Model only what the scene requires").
+  // Without in-scattering (σ_s = 0 or the light off) only the unwarp runs: it writes L_in = 0
+  // (DESIGN.md "Model only what the scene requires"); the composite computes T.
   if (bindings.scatters) {
     pass("epipolar_slice_end_points", slicePipeline_,
          [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });

@@ -28,7 +28,7 @@ static_assert(sizeof(gpu::PrefilteredFixupArgs) == 32);
 
 namespace {
 
-constexpr std::uint32_t kBindings = 18;
+constexpr std::uint32_t kBindings = 17;
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 constexpr VkImageUsageFlags kMapUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 // The moment shadow map of the filtered resampling: Θ4* in 16-bit UNORM (peters2017 D.1), which
@@ -149,7 +149,7 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
       {2, image, kMaxShadowMaps, stage, nearestSamplers.data()},
       {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
       {4, storage, 1, stage, nullptr},
-      {5, storage, 1, stage, nullptr},
+      {5, image, 1, stage, &linear},
       {6, image, 1, stage, &linear},
       {7, storage, 1, stage, nullptr},
       {8, image, 1, stage, nearestSamplers.data()},
@@ -161,14 +161,13 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
       {14, storage, 1, stage, nullptr},
       {15, storage, 1, stage, nullptr},
       {16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
-      {17, image, 1, stage, &linear},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps + 6},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 7},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 6},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
   }};
   sets_.resize(slots);
@@ -410,7 +409,6 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   };
   // Image B of a one-image variant is never read or written; A stands in to keep the set valid.
   const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
-  const VkDescriptorImageInfo transmittance{VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo moments = general(maps_.momentMap, maps_.momentMap);
   const VkDescriptorImageInfo rectA = general(maps_.rectifiedA, maps_.rectifiedA);
   const VkDescriptorImageInfo rectB = general(maps_.rectifiedB, maps_.rectifiedA);
@@ -434,7 +432,8 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   write(2, image, kMaxShadowMaps).pImageInfo = shadow.data();
   write(3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &constants;
   write(4, storage, 1).pImageInfo = &scattering;
-  write(5, storage, 1).pImageInfo = &transmittance;
+  const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
+  write(5, image, 1).pImageInfo = &lightColor;
   write(6, image, 1).pImageInfo = &moments;
   write(7, storage, 1).pImageInfo = &moments;
   write(8, image, 1).pImageInfo = &rectA;
@@ -446,8 +445,6 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   write(14, storage, 1).pImageInfo = &prefixA;
   write(15, storage, 1).pImageInfo = &prefixB;
   write(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
-  const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
-  write(17, image, 1).pImageInfo = &lightColor;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
 }
 
@@ -470,7 +467,7 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
   };
 
   // Every map is bound (the evaluation's descriptors name the prefix sums even when it skips
-  // them), so every map is in GENERAL, also in a frame that computes only T.
+  // them), so every map is in GENERAL, also in a frame that only writes L_in = 0.
   discardToGeneral(gpu, cmd, {&maps_.momentMap, &maps_.rectifiedA, &maps_.rectifiedB, &maps_.prefixA, &maps_.prefixB});
   if (plan_.scatters) {
     if (plan_.filtered) {

@@ -42,7 +42,7 @@ class PrefilteredTechnique {
   /// extinction of the prefix weights, the epipole block; writes the slot's constants and makes
   /// the maps match the settings (maps of other sizes are kept until no frame in flight can use
   /// them). `note` receives what was chosen, for the stats. The light must be directional.
-  /// `scatters`: false when there is no in-scattering to compute (only T is written then).
+  /// `scatters`: false when there is no in-scattering to compute (only L_in = 0 is written then).
   Outcome prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings, bool scatters,
                   VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex, std::uint32_t framesInFlight,
                   std::string& note);

@@ -7,20 +7,19 @@ namespace tyndall {
 
 Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
-  const std::array<VkDescriptorSetLayoutBinding, 6> bindings{{
+  const std::array<VkDescriptorSetLayoutBinding, 5> bindings{{
       {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
       {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
       {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
       {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, &linear},
+      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, &linear},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 3> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 2},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
   }};
   sets_.resize(slots);
   return allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_);
@@ -58,7 +57,6 @@ void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
   const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
   const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);
   const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
-  const VkDescriptorImageInfo transmittance{VK_NULL_HANDLE, b.transmittance, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
 
   auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) {
@@ -69,17 +67,15 @@ void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
     w.descriptorType = type;
     return w;
   };
-  std::array<VkWriteDescriptorSet, 6> writes{
+  std::array<VkWriteDescriptorSet, 5> writes{
       write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1), write(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1),
-      write(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps),
-      write(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1), write(4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1),
-      write(5, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1)};
+      write(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps), write(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1),
+      write(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1)};
   writes[0].pBufferInfo = &constants;
   writes[1].pImageInfo = &depth;
   writes[2].pImageInfo = shadow.data();
   writes[3].pImageInfo = &scattering;
-  writes[4].pImageInfo = &transmittance;
-  writes[5].pImageInfo = &lightColor;
+  writes[4].pImageInfo = &lightColor;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 
   gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<std::size_t>(b.light)]);

@@ -1,5 +1,5 @@
 // The Reference technique: brute force per pixel, texel by texel through the shadow map
-// (shaders/reference/). Writes L_in and the view-ray transmittance to Tyndall's targets.
+// (shaders/reference/). Writes L_in to Tyndall's target.
 #pragma once
 
 #include <array>

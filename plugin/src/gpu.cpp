@@ -325,4 +325,14 @@ Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkAllocateDescriptorSets", result);
 }
 
+VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
+                                     std::uint32_t count) {
+  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  w.dstSet = set;
+  w.dstBinding = binding;
+  w.descriptorCount = count;
+  w.descriptorType = type;
+  return w;
+}
+
 }  // namespace tyndall

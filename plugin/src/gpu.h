@@ -114,6 +114,10 @@ Outcome createLayouts(const Gpu& gpu, std::span<const VkDescriptorSetLayoutBindi
 Outcome allocateDescriptorSets(const Gpu& gpu, VkDescriptorSetLayout layout,
                                std::span<const VkDescriptorPoolSize> perSetSizes, VkDescriptorPool& pool,
                                std::vector<VkDescriptorSet>& sets);
+/// A descriptor write of `count` descriptors of `type` at `binding` of `set`; the caller points it
+/// at its buffer or image infos.
+VkWriteDescriptorSet descriptorWrite(VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type,
+                                     std::uint32_t count = 1);
 
 /// What a scattering technique reads and writes in a frame: the host's depth buffer and shadow
 /// maps (readable by compute shaders) and Tyndall's L_in target (storage, GENERAL). T is not a

@@ -10,22 +10,13 @@ namespace tyndall {
 namespace {
 
 // Binding 0: FrameConstants; 1: the host's depth buffer; 2: L_in (composite) or T (its AOV pass).
-VkWriteDescriptorSet writeAt(VkDescriptorSet set, std::uint32_t binding, VkDescriptorType type) {
-  VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  w.dstSet = set;
-  w.dstBinding = binding;
-  w.descriptorCount = 1;
-  w.descriptorType = type;
-  return w;
-}
-
 void writeSet(const Gpu& gpu, VkDescriptorSet set, VkBuffer constants, const ImageRef& depth,
               VkImageLayout depthLayout, VkDescriptorType targetType, const VkDescriptorImageInfo& target) {
   const VkDescriptorBufferInfo frame{constants, 0, sizeof(gpu::FrameConstants)};
   const VkDescriptorImageInfo depthInfo{VK_NULL_HANDLE, depth.view, depthLayout};
-  std::array<VkWriteDescriptorSet, 3> writes{writeAt(set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
-                                             writeAt(set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
-                                             writeAt(set, 2, targetType)};
+  std::array<VkWriteDescriptorSet, 3> writes{descriptorWrite(set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
+                                             descriptorWrite(set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
+                                             descriptorWrite(set, 2, targetType)};
   writes[0].pBufferInfo = &frame;
   writes[1].pImageInfo = &depthInfo;
   writes[2].pImageInfo = &target;

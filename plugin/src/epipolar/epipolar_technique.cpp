@@ -410,12 +410,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
 
   std::array<VkWriteDescriptorSet, kBindings> writes{};
   auto write = [&](std::size_t i, std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
-    writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    writes[i].dstSet = set;
-    writes[i].dstBinding = binding;
-    writes[i].descriptorCount = count;
-    writes[i].descriptorType = type;
-    return writes[i];
+    return writes[i] = descriptorWrite(set, binding, type, count);
   };
   write(0, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &constants;
   write(1, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1).pImageInfo = &depth;

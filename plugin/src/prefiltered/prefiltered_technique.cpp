@@ -417,13 +417,7 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
 
   std::array<VkWriteDescriptorSet, kBindings> writes{};
   auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
-    VkWriteDescriptorSet& w = writes[binding];
-    w = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = set;
-    w.dstBinding = binding;
-    w.descriptorCount = count;
-    w.descriptorType = type;
-    return w;
+    return writes[binding] = descriptorWrite(set, binding, type, count);
   };
   const VkDescriptorType image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;

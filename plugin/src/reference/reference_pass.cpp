@@ -59,18 +59,12 @@ void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
   const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
 
-  auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) {
-    VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    w.dstSet = set;
-    w.dstBinding = binding;
-    w.descriptorCount = count;
-    w.descriptorType = type;
-    return w;
-  };
   std::array<VkWriteDescriptorSet, 5> writes{
-      write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1), write(1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1),
-      write(2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps), write(3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1),
-      write(4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1)};
+      descriptorWrite(set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
+      descriptorWrite(set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
+      descriptorWrite(set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps),
+      descriptorWrite(set, 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+      descriptorWrite(set, 4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)};
   writes[0].pBufferInfo = &constants;
   writes[1].pImageInfo = &depth;
   writes[2].pImageInfo = shadow.data();

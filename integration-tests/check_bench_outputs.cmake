@@ -1,13 +1,17 @@
-# Checks bench.tiny_sweep's outputs: every file there, and in results.json the rows the sweep must
-# have (pillars: Reference + 2 configurations measured; spot-lamp: Reference + epipolar measured,
-# prefiltered skipped with its reason), each measured row with a positive time, ratios to the
-# Reference and the floor, a finite error and no NaN/Inf.
+# Checks bench.tiny_sweep_*'s outputs: every file there, and in results.json the schedule the sweep
+# ran with (SCHEDULE) and the rows it must have (pillars: Reference + 2 configurations measured;
+# spot-lamp: Reference + epipolar measured, prefiltered skipped with its reason), each measured row
+# with a positive time, ratios to the Reference and the floor, a finite error and no NaN/Inf.
 foreach(file results.csv results.json results.md choice.json tradeoffs.md pareto-64x36-256.svg pareto-64x36-256.png)
   if(NOT EXISTS "${DIR}/${file}")
     message(FATAL_ERROR "tyndall-bench did not write ${DIR}/${file}")
   endif()
 endforeach()
 file(READ "${DIR}/results.json" json)
+string(JSON schedule GET "${json}" schedule)
+if(NOT schedule STREQUAL SCHEDULE)
+  message(FATAL_ERROR "results.json: schedule '${schedule}', expected '${SCHEDULE}'")
+endif()
 string(JSON count LENGTH "${json}" rows)
 if(NOT count EQUAL 6)
   message(FATAL_ERROR "results.json: expected 6 rows (2 scenes x (Reference + 2 configurations)), got ${count}")

@@ -16,7 +16,7 @@ using namespace tyndall::samples::bench;
 const char* const kUsage =
     "usage: tyndall-bench [--scenes NAME|FILE.json,...] [--sizes WxH,...] [--shadow-maps N,...]\n"
     "         [--grid default|full|quick|none] [--config TECHNIQUE[:KEY=VALUE,...]]... [--frames N] [--warm-up N]\n"
-    "         [--orbit-frames N] [--orbit-degrees D] [--choose-at WxH/N] [--out DIR] [--validation]\n"
+    "         [--orbit-frames N] [--orbit-degrees D] [--choose-at WxH/N] [--out DIR] [--sequential] [--validation]\n"
     "       tyndall-bench --from RESULTS.json [--choose-at WxH/N] [--out DIR]\n"
     "  --scenes: names in samples/scenes/ or scene files (default: pillars,fence,forest,window-room,spot-lamp,\n"
     "            stained-glass)\n"
@@ -24,6 +24,8 @@ const char* const kUsage =
     "  --grid: the built-in configurations (default: default; full: more); --config adds one: epipolar:KEY=VALUE,...\n"
     "          or prefiltered:KEY=VALUE,... in tyndall-render's --epipolar / --prefiltered syntax\n"
     "  --frames: timed frames per configuration, median reported (default 20); --warm-up: untimed (3)\n"
+    "  --sequential: each configuration's frames in a row, one context alive at a time (default: interleaved,\n"
+    "                one frame of every configuration, the Reference and the floor pass per round)\n"
     "  --orbit-frames / --orbit-degrees: the orbit for temporal stability (6 frames, 0.25 degrees each)\n"
     "  --choose-at: the size and shadow map the profiles are chosen at (default: the first of each)\n"
     "  --out: the output directory (default out/bench): results.csv/.json/.md, pareto-*.svg/.png,\n"
@@ -81,6 +83,10 @@ int main(int argc, char** argv) {
     }
     if (arg == "--validation") {
       options.validation = true;
+      continue;
+    }
+    if (arg == "--sequential") {
+      options.interleaved = false;
       continue;
     }
     if (i + 1 >= argc) return fail(arg + " needs a value (--help)");
@@ -158,6 +164,7 @@ int main(int argc, char** argv) {
   if (!chooseAt.empty() && !parseChooseAt(chooseAt, context)) return fail("--choose-at takes WxH/N (got '" + chooseAt + "')");
   context.frames = options.frames;
   context.warmUpFrames = options.warmUpFrames;
+  context.schedule = options.interleaved ? "interleaved" : "sequential";
   context.orbitFrames = options.orbitFrames;
   context.orbitDegreesPerFrame = options.orbitDegreesPerFrame;
   options.progress = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };

@@ -159,6 +159,18 @@ std::vector<PlotPoint> plotPoints(const std::vector<Summary>& summaries, const s
   return points;
 }
 
+// How the timed frames were scheduled, as the document's protocol sentence says it (nothing for
+// files written before the bench recorded it).
+std::string scheduleText(const std::string& schedule) {
+  if (schedule == "interleaved") {
+    return ", interleaved: every round renders one frame of the floor pass, the Reference and every "
+           "configuration in turn (the first rotating), each frame alone on the device, so that the machine's "
+           "other work slows them alike";
+  }
+  if (schedule == "sequential") return ", each configuration's frames in a row, each frame alone on the device";
+  return "";
+}
+
 }  // namespace
 
 std::vector<Summary> summarize(const std::vector<Row>& rows, std::uint32_t width, std::uint32_t height,
@@ -295,6 +307,7 @@ bool readResults(const std::string& path, std::vector<Row>& rows, ReportContext&
     context.warmUpFrames = all.value("warmUpFrames", defaults.warmUpFrames);
     context.orbitFrames = all.value("orbitFrames", defaults.orbitFrames);
     context.orbitDegreesPerFrame = all.value("orbitDegreesPerFrame", defaults.orbitDegreesPerFrame);
+    context.schedule = all.value("schedule", std::string());
     rows.clear();
     for (const nlohmann::json& j : all.at("rows")) {
       Row r;
@@ -359,6 +372,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   all["command"] = context.commandLine;
   all["frames"] = context.frames;
   all["warmUpFrames"] = context.warmUpFrames;
+  if (!context.schedule.empty()) all["schedule"] = context.schedule;
   all["orbitFrames"] = context.orbitFrames;
   all["orbitDegreesPerFrame"] = context.orbitDegreesPerFrame;
   all["chooseAt"] = {context.chooseWidth, context.chooseHeight, context.chooseShadowMap};
@@ -472,7 +486,8 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
          "every size after the Reference and the full-screen floor pass (one pass that reads depth and colour and "
          "writes colour, `samples/bench/shaders/floor.frag`), in the same run. Times are the median GPU time "
          "(Tyndall's timestamps, first pass start to last pass end; frames timed without copying L_in to the AOV, which one more frame does for the errors) of " + std::to_string(context.frames) +
-         " frames after " + std::to_string(context.warmUpFrames) + " warm-up frames; speedup is the Reference's "
+         " frames after " + std::to_string(context.warmUpFrames) + " warm-up frames" + scheduleText(context.schedule) +
+         "; speedup is the Reference's "
          "time over the configuration's, `× floor` its time over the floor pass's. Errors are L_in against the "
          "Reference's (relative RMSE = RMSE / mean |reference|; p99 and max of |error| / mean |reference|). "
          "`temporal` is the mean frame-to-frame change of L_in over " + std::to_string(context.orbitFrames) +
@@ -480,8 +495,12 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
          "° per frame about the target) over the Reference's own (1: as steady as the Reference). Memory is the "
          "context's device memory (`Stats::deviceMemoryBytes`) with only that configuration run. The prefiltered "
          "technique runs for directional lights only; its medians are over the directional-light scenes. On a CPU "
-         "driver such as lavapipe the GPU time is CPU time: other work on the machine inflates it, unevenly "
-         "over a long run, so compare only figures from one quiet run, and a GPU's figures only with a GPU's.\n\n";
+         "driver such as lavapipe the GPU time is CPU time: other work on the machine inflates it, unevenly " +
+         std::string(context.schedule == "interleaved"
+                         ? "over a long run; the interleaving spreads that over one scene's configurations alike, not "
+                           "over scenes or runs, so compare times only within one quiet run"
+                         : "over a long run, so compare only figures from one quiet run") +
+         ", and a GPU's figures only with a GPU's.\n\n";
   // The per-scene bars as profileGoals() holds them, so that the text cannot drift from the choice.
   std::string bars;
   for (const ProfileGoal& goal : profileGoals()) {

@@ -73,6 +73,9 @@ struct ReportContext {
   std::string device;
   std::uint32_t chooseWidth = 0, chooseHeight = 0, chooseShadowMap = 0;  ///< the group the choice is made in
   std::uint32_t frames = 0, warmUpFrames = 0, orbitFrames = 0;
+  /// "interleaved" or "sequential" (SweepOptions::interleaved); empty in files written before the
+  /// bench recorded it, which measured each configuration's frames in a row.
+  std::string schedule;
   double orbitDegreesPerFrame = 0.0;
 };
 

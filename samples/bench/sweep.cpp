@@ -142,13 +142,26 @@ struct Measurement {
   double temporalChange = 0.0;    // mean |ΔL_in| per orbit frame (absolute)
 };
 
+// One thing measured in a group: the floor pass (no configuration), the Reference or a
+// configuration, each with its own renderer and effect (a Tyndall context per configuration: its
+// memory and pipelines are the configuration's alone), open from its first frame to its last.
+struct Subject {
+  std::string name;
+  std::optional<Configuration> configuration;
+  std::unique_ptr<FloorPass> floor;
+  std::unique_ptr<TyndallEffect> tyndall;
+  std::unique_ptr<host::Renderer> renderer;
+  Measurement run;
+};
+
 class Sweep {
  public:
   Sweep(const SweepOptions& options, host::Device& device) : options_(options), device_(device) {}
 
   bool run(std::vector<Row>& rows, std::string& error) {
-    total_ = options_.scenes.size() * options_.sizes.size() * options_.shadowMaps.size() *
-             (options_.configurations.size() + 2);
+    // Progress in frames of every subject, the readbacks and orbits counted as one frame each.
+    const std::size_t groups = options_.scenes.size() * options_.sizes.size() * options_.shadowMaps.size();
+    unitsTotal_ = groups * (options_.configurations.size() + 2) * (options_.warmUpFrames + options_.frames + 1);
     start_ = std::chrono::steady_clock::now();
     for (const std::string& path : options_.scenes) {
       host::SceneLoadResult loaded = host::loadScene(path);
@@ -179,23 +192,56 @@ class Sweep {
     const std::string where = stem + " " + std::to_string(width) + "x" + std::to_string(height) + " " +
                               std::to_string(map) + "²";
 
+    const Configuration referenceConfig;
     Row base;
     base.scene = stem;
     base.width = width;
     base.height = height;
     base.shadowMap = map;
 
-    // The floor: the cheapest post-process at this size.
-    std::unique_ptr<FloorPass> floor = FloorPass::create(device_, error);
-    if (!floor) return false;
-    Measurement floorRun;
-    if (!measure(scene, settings, floor.get(), nullptr, floor.get(), false, floorRun, error)) return false;
-    const double floorMs = median(floorRun.totals);
-    report(where + " floor pass: " + formatMs(floorMs));
+    // Subject 0: the floor, the cheapest post-process at this size; 1: the Reference; then the
+    // configurations this scene's light allows (`configurations[k]` is subject measured[k], or
+    // none when skipped).
+    std::vector<Subject> subjects(2);
+    subjects[0].name = "floor pass";
+    subjects[1].name = referenceConfig.name();
+    subjects[1].configuration = referenceConfig;
+    std::vector<std::optional<std::size_t>> measured;
+    for (const Configuration& config : options_.configurations) {
+      if (config.technique == Technique::Prefiltered && scene.light.type != host::LightType::Directional) {
+        measured.emplace_back();
+        unitsDone_ += options_.warmUpFrames + options_.frames + 1;
+        continue;
+      }
+      measured.emplace_back(subjects.size());
+      subjects.emplace_back();
+      subjects.back().name = config.name();
+      subjects.back().configuration = config;
+    }
+    if (options_.interleaved) {
+      // Every subject alive at once: the group's memory is the sum of theirs.
+      for (Subject& subject : subjects) {
+        if (!open(scene, settings, subject, error)) return false;
+      }
+      std::vector<Subject*> all;
+      for (Subject& subject : subjects) all.push_back(&subject);
+      if (!timeFrames(where, all, error)) return false;
+      for (Subject& subject : subjects) {
+        if (!finish(where, scene, subject, error)) return false;
+      }
+    } else {
+      for (Subject& subject : subjects) {
+        std::vector<Subject*> one{&subject};
+        if (!open(scene, settings, subject, error) || !timeFrames(where, one, error) ||
+            !finish(where, scene, subject, error)) {
+          return false;
+        }
+      }
+    }
 
-    Configuration referenceConfig;
-    Measurement reference;
-    if (!measureConfiguration(scene, settings, referenceConfig, reference, error)) return false;
+    const double floorMs = median(subjects[0].run.totals);
+    progress(where + " floor pass: " + formatMs(floorMs));
+    const Measurement& reference = subjects[1].run;
     const double referenceMs = median(reference.totals);
     const ErrorStats referenceScale = compareRgb(reference.scattering, reference.scattering);
     const double meanReference = referenceScale.meanReference;
@@ -206,27 +252,24 @@ class Sweep {
       row.temporalChange = referenceChange;
       row.temporalRatio = 1.0;
       rows.push_back(row);
-      report(where + " " + describeRow(row));
+      progress(where + " " + describeRow(row));
     }
 
-    for (const Configuration& config : options_.configurations) {
+    for (std::size_t k = 0; k < options_.configurations.size(); ++k) {
+      const Configuration& config = options_.configurations[k];
       Row row = base;
       row.configuration = config.name();
       row.technique = config.techniqueName();
       row.parameters = config.parameters();
       row.referenceMilliseconds = referenceMs;
       row.floorMilliseconds = floorMs;
-      if (config.technique == Technique::Prefiltered && scene.light.type != host::LightType::Directional) {
+      if (!measured[k]) {
         row.note = "prefiltered: directional lights only (a profile runs the epipolar technique for this light)";
         rows.push_back(row);
-        report(where + " " + row.configuration + ": skipped, " + row.note);
+        progress(where + " " + row.configuration + ": skipped, " + row.note);
         continue;
       }
-      Measurement run;
-      if (!measureConfiguration(scene, settings, config, run, error)) {
-        error = where + " " + row.configuration + ": " + error;
-        return false;
-      }
+      const Measurement& run = subjects[*measured[k]].run;
       fill(row, config, run, floorMs, referenceMs);
       const ErrorStats e = compareRgb(run.scattering, reference.scattering);
       row.relativeRmse = e.relativeRmse;
@@ -236,9 +279,135 @@ class Sweep {
       row.temporalChange = meanReference > 0.0 ? run.temporalChange / meanReference : 0.0;
       row.temporalRatio = referenceChange > 0.0 ? row.temporalChange / referenceChange : 0.0;
       rows.push_back(row);
-      report(where + " " + describeRow(row));
+      progress(where + " " + describeRow(row));
     }
     return true;
+  }
+
+  // Creates the subject's effect (the floor pass or a Tyndall context) and its renderer.
+  bool open(const host::Scene& scene, const host::RenderSettings& settings, Subject& subject, std::string& error) {
+    if (!subject.configuration) {
+      subject.floor = FloorPass::create(device_, error);
+      if (!subject.floor) return false;
+    } else {
+      const Configuration& config = *subject.configuration;
+      subject.tyndall = TyndallEffect::create(device_, settings, Profile::Balanced, error, PipelineCreation::OnFirstUse);
+      if (!subject.tyndall) return false;
+      subject.tyndall->setTechnique(config.technique);
+      subject.tyndall->setEpipolarSettings(config.epipolar);
+      subject.tyndall->setPrefilteredSettings(config.prefiltered);
+      // Timed frames run as an engine runs them, without copying L_in out; one more frame copies it.
+      subject.tyndall->setAovOutputs(false);
+    }
+    subject.renderer = host::Renderer::create(device_, scene, settings, error);
+    if (!subject.renderer) return false;
+    subject.renderer->addPostProcess(subject.floor ? static_cast<host::PostProcessEffect*>(subject.floor.get())
+                                                   : subject.tyndall.get());
+    return true;
+  }
+
+  // The warm-up and timed frames of every subject, each frame alone on the device (waited for
+  // before the next is recorded, so that neither another subject's frame nor the recording of the
+  // next one runs beside it: on a CPU driver both take the same cores).
+  // Given several subjects (SweepOptions::interleaved), one frame of every subject per round, the
+  // round's first subject rotating, so that whatever else the machine does during the group slows
+  // every subject alike and the ratios between them hold.
+  bool timeFrames(const std::string& where, const std::vector<Subject*>& subjects, std::string& error) {
+    const std::uint32_t frames = options_.warmUpFrames + options_.frames;
+    const std::size_t n = subjects.size();
+    auto renderOne = [&](Subject& subject, std::uint32_t frame) {
+      if (!subject.renderer->renderFrame(error)) {
+        subject.renderer->waitIdle();
+        error = where + " " + subject.name + ": " + error;
+        return false;
+      }
+      subject.renderer->waitIdle();
+      ++unitsDone_;
+      if (!subject.floor) return true;
+      // The floor pass keeps one pair of stamps: read each frame's before the next.
+      const std::optional<double> ms = subject.floor->lastMilliseconds();
+      if (!ms) {
+        error = "the floor pass's timestamps could not be read";
+        return false;
+      }
+      if (frame >= options_.warmUpFrames) subject.run.totals.push_back(*ms);
+      return true;
+    };
+    if (n > 1) {
+      for (std::uint32_t frame = 0; frame < frames; ++frame) {
+        for (std::size_t i = 0; i < n; ++i) {
+          if (!renderOne(*subjects[(frame + i) % n], frame)) return false;
+        }
+        progress(where + ": round " + std::to_string(frame + 1) + " of " + std::to_string(frames) + " (" +
+                 std::to_string(n) + " subjects, " + std::to_string(options_.warmUpFrames) + " rounds of warm-up)");
+      }
+    } else {
+      for (std::uint32_t frame = 0; frame < frames; ++frame) {
+        if (!renderOne(*subjects[0], frame)) return false;
+      }
+      progress(where + " " + subjects[0]->name + ": " + std::to_string(frames) + " frames");
+    }
+    return true;
+  }
+
+  // A subject's timings from its context, L_in of one more frame at the scene's camera and the
+  // orbit; then its renderer and effect are released.
+  bool finish(const std::string& where, const host::Scene& scene, Subject& subject, std::string& error) {
+    const bool ok = collect(scene, subject, error);
+    if (!ok) error = where + " " + subject.name + ": " + error;
+    subject.renderer.reset();
+    subject.tyndall.reset();
+    subject.floor.reset();
+    ++unitsDone_;
+    return ok;
+  }
+
+  bool collect(const host::Scene& scene, Subject& subject, std::string& error) {
+    Measurement& out = subject.run;
+    host::Renderer& renderer = *subject.renderer;
+    if (TyndallEffect* tyndall = subject.tyndall.get()) {
+      const std::uint32_t frames = options_.warmUpFrames + options_.frames;
+      tyndall->context().collectTimings();
+      std::vector<FrameTimings> timings = tyndall->context().takeCompletedTimings();
+      std::sort(timings.begin(), timings.end(),
+                [](const FrameTimings& a, const FrameTimings& b) { return a.frameIndex < b.frameIndex; });
+      if (timings.size() < frames) {
+        error = "timestamps of " + std::to_string(timings.size()) + " of " + std::to_string(frames) +
+                " frames came back (does the device support timestamps?)";
+        return false;
+      }
+      for (std::size_t i = options_.warmUpFrames; i < timings.size(); ++i) {
+        out.totals.push_back(timings[i].totalMilliseconds);
+        for (const PassTiming& pass : timings[i].passes) out.passes[pass.name].push_back(pass.milliseconds);
+      }
+      out.stats = tyndall->context().stats();
+    }
+    if (!checkValidation(error)) return false;
+    if (!subject.tyndall) return true;
+    subject.tyndall->setAovOutputs(true);
+    if (!renderer.renderFrame(error)) {
+      renderer.waitIdle();
+      return false;
+    }
+    renderer.waitIdle();
+    if (!renderer.readAovScattering(out.scattering, error)) return false;
+
+    host::ImageRgba32f previous = out.scattering;
+    host::ImageRgba32f current;
+    double change = 0.0;
+    for (std::uint32_t k = 1; k <= options_.orbitFrames; ++k) {
+      if (!renderer.setCamera(orbit(scene.camera, options_.orbitDegreesPerFrame * k), error) ||
+          !renderer.renderFrame(error)) {
+        renderer.waitIdle();
+        return false;
+      }
+      renderer.waitIdle();
+      if (!renderer.readAovScattering(current, error)) return false;
+      change += meanAbsoluteChange(current, previous);
+      std::swap(previous, current);
+    }
+    out.temporalChange = options_.orbitFrames > 0 ? change / options_.orbitFrames : 0.0;
+    return checkValidation(error);
   }
 
   void fill(Row& row, const Configuration& config, const Measurement& run, double floorMs, double referenceMs) const {
@@ -257,88 +426,6 @@ class Sweep {
     row.deviceMemoryBytes = run.stats.deviceMemoryBytes;
     row.marchedSamples = run.stats.marchedSamples;
     row.fixedUpPixelFraction = std::max(run.stats.fixedUpPixelFraction, 0.0);
-  }
-
-  bool measureConfiguration(const host::Scene& scene, const host::RenderSettings& settings, const Configuration& config,
-                            Measurement& out, std::string& error) {
-    // A context per configuration: its memory and pipelines are this configuration's alone.
-    std::unique_ptr<TyndallEffect> effect =
-        TyndallEffect::create(device_, settings, Profile::Balanced, error, PipelineCreation::OnFirstUse);
-    if (!effect) return false;
-    effect->setTechnique(config.technique);
-    effect->setEpipolarSettings(config.epipolar);
-    effect->setPrefilteredSettings(config.prefiltered);
-    return measure(scene, settings, effect.get(), effect.get(), nullptr, true, out, error);
-  }
-
-  // Warm-up and timed frames at the scene's camera, L_in of the last one, then the orbit.
-  bool measure(const host::Scene& scene, const host::RenderSettings& settings, host::PostProcessEffect* effect,
-               TyndallEffect* tyndall, FloorPass* floor, bool readScattering, Measurement& out, std::string& error) {
-    std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device_, scene, settings, error);
-    if (!renderer) return false;
-    renderer->addPostProcess(effect);
-    // Timed frames run as an engine runs them, without copying L_in out; one more frame copies it.
-    if (tyndall != nullptr) tyndall->setAovOutputs(false);
-    const std::uint32_t frames = options_.warmUpFrames + options_.frames;
-    for (std::uint32_t frame = 0; frame < frames; ++frame) {
-      if (!renderer->renderFrame(error)) {
-        renderer->waitIdle();
-        return false;
-      }
-      if (floor != nullptr) {
-        // The floor pass keeps one pair of stamps per slot: read each frame's before it is reused.
-        renderer->waitIdle();
-        const std::optional<double> ms = floor->lastMilliseconds();
-        if (!ms) {
-          error = "the floor pass's timestamps could not be read";
-          return false;
-        }
-        if (frame >= options_.warmUpFrames) out.totals.push_back(*ms);
-      }
-    }
-    renderer->waitIdle();
-    if (tyndall != nullptr) {
-      tyndall->context().collectTimings();
-      std::vector<FrameTimings> timings = tyndall->context().takeCompletedTimings();
-      std::sort(timings.begin(), timings.end(),
-                [](const FrameTimings& a, const FrameTimings& b) { return a.frameIndex < b.frameIndex; });
-      if (timings.size() < frames) {
-        error = "timestamps of " + std::to_string(timings.size()) + " of " + std::to_string(frames) +
-                " frames came back (does the device support timestamps?)";
-        return false;
-      }
-      for (std::size_t i = options_.warmUpFrames; i < timings.size(); ++i) {
-        out.totals.push_back(timings[i].totalMilliseconds);
-        for (const PassTiming& pass : timings[i].passes) out.passes[pass.name].push_back(pass.milliseconds);
-      }
-      out.stats = tyndall->context().stats();
-    }
-    if (!checkValidation(error)) return false;
-    if (!readScattering) return true;
-    if (tyndall != nullptr) tyndall->setAovOutputs(true);
-    if (!renderer->renderFrame(error)) {
-      renderer->waitIdle();
-      return false;
-    }
-    renderer->waitIdle();
-    if (!renderer->readAovScattering(out.scattering, error)) return false;
-
-    host::ImageRgba32f previous = out.scattering;
-    host::ImageRgba32f current;
-    double change = 0.0;
-    for (std::uint32_t k = 1; k <= options_.orbitFrames; ++k) {
-      if (!renderer->setCamera(orbit(scene.camera, options_.orbitDegreesPerFrame * k), error) ||
-          !renderer->renderFrame(error)) {
-        renderer->waitIdle();
-        return false;
-      }
-      renderer->waitIdle();
-      if (!renderer->readAovScattering(current, error)) return false;
-      change += meanAbsoluteChange(current, previous);
-      std::swap(previous, current);
-    }
-    out.temporalChange = options_.orbitFrames > 0 ? change / options_.orbitFrames : 0.0;
-    return checkValidation(error);
   }
 
   bool checkValidation(std::string& error) const {
@@ -362,20 +449,22 @@ class Sweep {
     return row.configuration + text;
   }
 
-  void report(const std::string& line) {
-    ++done_;
+  // A line with the elapsed time and an estimate of what is left.
+  void progress(const std::string& line) const {
     if (!options_.progress) return;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double left = done_ < total_ ? elapsed / static_cast<double>(done_) * static_cast<double>(total_ - done_) : 0.0;
+    const double left = unitsDone_ > 0 && unitsDone_ < unitsTotal_
+                            ? elapsed / static_cast<double>(unitsDone_) * static_cast<double>(unitsTotal_ - unitsDone_)
+                            : 0.0;
     char prefix[96];
-    std::snprintf(prefix, sizeof(prefix), "[%zu/%zu, %.0f s, about %.0f s left] ", done_, total_, elapsed, left);
+    std::snprintf(prefix, sizeof(prefix), "[%.0f s, about %.0f s left] ", elapsed, left);
     options_.progress(prefix + line);
   }
 
   const SweepOptions& options_;
   host::Device& device_;
-  std::size_t total_ = 0;
-  std::size_t done_ = 0;
+  std::size_t unitsTotal_ = 0;
+  std::size_t unitsDone_ = 0;
   std::chrono::steady_clock::time_point start_;
 };
 

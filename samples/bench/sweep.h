@@ -47,6 +47,12 @@ struct SweepOptions {
   std::vector<Configuration> configurations;  ///< the Reference is always measured first
   std::uint32_t warmUpFrames = 3;     ///< rendered and not timed (pipelines, caches)
   std::uint32_t frames = 20;          ///< timed frames; the median is reported
+  /// Frames of one scene and size interleaved: each round renders one frame of the floor pass, the
+  /// Reference and every configuration (the first rotating), so that the machine's other work slows
+  /// them alike and their ratios hold; all their renderers and contexts are alive at once. False:
+  /// one subject's frames after another's, one renderer and context alive at a time (for sizes
+  /// whose every context at once would not fit). Either way each frame runs alone on the device.
+  bool interleaved = true;
   std::uint32_t orbitFrames = 6;      ///< frames of the slow orbit for the temporal stability
   double orbitDegreesPerFrame = 0.25; ///< camera rotation about its target's vertical axis per frame
   bool validation = false;            ///< fail on any validation message

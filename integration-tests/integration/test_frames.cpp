@@ -139,7 +139,8 @@ TEST(DepthConventions, ReverseZAndInfiniteFarMatchStandard) {
 }
 
 // Model only what the scene requires (DESIGN.md): a vacuum records no scattering work; an
-// absorbing medium that does not scatter still attenuates.
+// absorbing medium that does not scatter runs no technique either (L_in is cleared) and still
+// attenuates.
 TEST(PassesRecorded, VacuumAndAbsorptionOnly) {
   host::Scene scene = loadTestScene("analytic-mixed");
   for (host::MediumComponent& c : scene.medium) {
@@ -157,7 +158,9 @@ TEST(PassesRecorded, VacuumAndAbsorptionOnly) {
   for (host::MediumComponent& c : scene.medium) c.absorption = glm::dvec3(0.05);
   const samples::RenderResult absorbing = renderWithAovs(scene, smallOptions());
   EXPECT_EQ(absorbing.stats.passesRecorded,
-            (std::vector<std::string>{"reference_scattering", "composite", "aov_output"}));
+            (std::vector<std::string>{"scattering_clear", "composite", "aov_output"}));
+  EXPECT_EQ(absorbing.stats.technique, Technique::None);
+  EXPECT_NE(absorbing.stats.techniqueNote.find("no in-scattering"), std::string::npos) << absorbing.stats.techniqueNote;
   double minT = 1.0;
   for (std::size_t i = 0; i < absorbing.scattering.pixels.size(); i += 4) {
     ASSERT_EQ(absorbing.scattering.pixels[i], 0.0f);

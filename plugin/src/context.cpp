@@ -63,8 +63,11 @@ ImageUse hostAfter(const ImageRef& image) {
 // shader (T) and by the T AOV's compute pass.
 constexpr VkPipelineStageFlags kDepthReaders =
     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
-constexpr VkImageUsageFlags kTargetUsage =
-    VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
+// The L_in target's readers in a frame: the composite's fragment shader and the AOV copies.
+constexpr VkPipelineStageFlags kTargetReaders = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+// Transfer destination: a frame without in-scattering clears L_in instead of running a technique.
+constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                           VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
 // L_in is kept in full float: the Reference is the validation path and the AOVs are compared
 // against double-precision references. The same target holds T for the T AOV's copy once L_in
 // has been composited and copied (Context::Impl::recordAovs): T needs no target of its own.
@@ -173,7 +176,10 @@ struct Context::Impl {
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
-                        const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable, bool scatters);
+                        const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable);
+  void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
+                       const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable,
+                       VkImageLayout depthLayout);
   void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets);
 };
 
@@ -427,9 +433,13 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     note += "; CPU driver: a point light's texel walk with maps above " + std::to_string(kCpuDriverPointLightMapLimit) +
             "^2 can exceed lavapipe's 65,535 loop iterations per invocation and come out too dark";
   }
-  if (setup.attenuates) {
-    if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);
+  if (!setup.scatters) {
+    // Nothing scatters (σ_s = 0, the light off, or a vacuum): no technique runs, L_in is cleared
+    // and the composite attenuates the back buffer (DESIGN.md "Model only what the scene requires").
+    technique = Technique::None;
+    note = "no in-scattering (sigma_s = 0 or the light is off): L_in cleared to 0, the back buffer attenuated";
   }
+  if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);
   const bool drawsDebugView = frame.debugView != DebugView::None && technique == Technique::Epipolar;
   if (frame.debugView != DebugView::None && !drawsDebugView) note += "; debug view: drawn by the epipolar technique only";
   if (drawsDebugView && debugImage.image == VK_NULL_HANDLE) {
@@ -448,25 +458,21 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     note += epipolarMarchNote(epipolarK, epipolarSettings) + sliceArcNote(arc);
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
     // Only a frame whose fix-up walks texel by texel (not in steps) builds the blocks it walks.
-    const std::uint32_t shadowBlocks =
-        setup.attenuates && setup.scatters && !frame.shadowMaps.empty() && epipolarSettings.fixupSteps == 0
-            ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)
-            : 0;
+    const std::uint32_t shadowBlocks = !frame.shadowMaps.empty() && epipolarSettings.fixupSteps == 0
+                                           ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)
+                                           : 0;
     epipolarK.arc.w = static_cast<float>(shadowBlocks);  // fixup_args.comp sizes the blocks pass by it
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, shadowBlocks, stats.frameIndex,
                                      desc.maxFramesInFlight);
         !o) {
       return fail(o);
     }
-    // Only in a frame that records the march (the table is marked built here).
-    if (setup.attenuates && setup.scatters) {
-      if (Outcome o = epipolar.prepareScatteringTable(gpu, frame, buildScatteringTable); !o) return fail(o);
-    }
+    if (Outcome o = epipolar.prepareScatteringTable(gpu, frame, buildScatteringTable); !o) return fail(o);
   }
 
-  if (technique == Technique::Prefiltered && setup.attenuates) {
+  if (technique == Technique::Prefiltered) {
     const PrefilteredSettings& settings = frame.prefiltered != nullptr ? *frame.prefiltered : choice.prefiltered;
-    if (Outcome o = prefiltered.prepare(gpu, frame, settings, setup.scatters, extent, slot, stats.frameIndex,
+    if (Outcome o = prefiltered.prepare(gpu, frame, settings, extent, slot, stats.frameIndex,
                                         desc.maxFramesInFlight, note);
         !o) {
       return fail(o);
@@ -489,10 +495,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.techniqueNote = "medium has no extinction: the back buffer is left as it is";
     recordAovs(cmd, slot, frame, false);
   } else {
-    stats.technique = technique;
+    stats.technique = technique;  // None when nothing scatters
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
-    recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable, setup.scatters);
+    recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable);
     recordAovs(cmd, slot, frame, true);
     // The host's depth buffer, which recordScattering acquired: read by the technique, the
     // composite and the T AOV's pass.
@@ -518,9 +524,51 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 
 void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
                                      Technique technique, const gpu::EpipolarConstants& epipolarConstants,
-                                     bool buildScatteringTable, bool scatters) {
+                                     bool buildScatteringTable) {
+  const VkImageLayout depthLayout = sampledDepthLayout(frame.depth.layout);
+  // The depth buffer stays acquired until the T AOV (Impl::record releases it).
+  imageBarrier(gpu, cmd, frame.depth.image, barrierAspect(frame.depth.format), frame.depth.arrayLayer,
+               hostBefore(frame.depth), {depthLayout, kDepthReaders, VK_ACCESS_SHADER_READ_BIT});
+  if (technique == Technique::None) {
+    // Nothing scatters: L_in = 0 without a technique (the previous frame's reads finish first).
+    const ImageUse transferWrite{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                 VK_ACCESS_TRANSFER_WRITE_BIT};
+    timer.beginPass(gpu, cmd, "scattering_clear");
+    imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                 {VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0}, transferWrite);
+    const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    gpu.vk.vkCmdClearColorImage(cmd, scattering.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+    timer.endPass(gpu, cmd);
+    stats.passesRecorded.emplace_back("scattering_clear");
+    imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, transferWrite,
+                 {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT});
+  } else {
+    recordTechnique(cmd, slot, frame, technique, epipolarConstants, buildScatteringTable, depthLayout);
+  }
+
+  // Composite into the back buffer.
+  const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  const VkPipelineStageFlags output = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  const VkAccessFlags blend = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+  timer.beginPass(gpu, cmd, "composite");
+  imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
+               hostBefore(frame.color), {attachment, output, blend});
+  composite.record(gpu, cmd, slot, constants[slot].buffer, frame.depth, depthLayout, scattering.view,
+                   frame.color, attachment);
+  timer.endPass(gpu, cmd);
+  stats.passesRecorded.emplace_back("composite");
+  imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
+               {attachment, output, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT}, hostAfter(frame.color));
+}
+
+// The technique's passes into the L_in target, left for the composite's fragment shader to read.
+// The depth buffer is acquired (recordScattering), in `depthLayout`.
+void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
+                                    Technique technique, const gpu::EpipolarConstants& epipolarConstants,
+                                    bool buildScatteringTable, VkImageLayout depthLayout) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
-  const VkPipelineStageFlags readers = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
 
   // Each pass's timestamps are written before its barriers: a CPU driver (lavapipe) takes a
   // timestamp when it next flushes, and a barrier flushes, so the stamps then bracket the work.
@@ -528,16 +576,15 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   if (bruteForce) timer.beginPass(gpu, cmd, "reference_scattering");
   // Tyndall's target: the previous frame's reads must finish before it is overwritten; the old
   // contents are discarded.
-  imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, readers, 0},
+  imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0},
                {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
 
   // Host inputs: depth buffer and shadow maps, sampled by the compute pass.
   ScatteringBindings bindings;
   bindings.constants = constants[slot].buffer;
   bindings.depth = frame.depth.view;
-  bindings.depthLayout = sampledDepthLayout(frame.depth.layout);
+  bindings.depthLayout = depthLayout;
   bindings.light = frame.light.type;
-  bindings.scatters = scatters;
   bindings.scattering = scattering.view;
   auto acquireDepth = [&](const ImageRef& image, VkImageLayout layout, VkPipelineStageFlags stages) {
     imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, hostBefore(image),
@@ -547,8 +594,6 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, {layout, compute, 0},
                  hostAfter(image));
   };
-  // The depth buffer stays acquired until the T AOV (Impl::record releases it).
-  acquireDepth(frame.depth, bindings.depthLayout, kDepthReaders);
   // The light-colour texture, or the white texel (cleared once, in the first frame that needs it).
   if (!frame.lightColor.empty()) {
     bindings.lightColor = frame.lightColor.view;
@@ -605,20 +650,6 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
                {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT});
-
-  // Composite into the back buffer.
-  const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-  const VkPipelineStageFlags output = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-  const VkAccessFlags blend = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  timer.beginPass(gpu, cmd, "composite");
-  imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
-               hostBefore(frame.color), {attachment, output, blend});
-  composite.record(gpu, cmd, slot, constants[slot].buffer, frame.depth, bindings.depthLayout, scattering.view,
-                   frame.color, attachment);
-  timer.endPass(gpu, cmd);
-  stats.passesRecorded.emplace_back("composite");
-  imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
-               {attachment, output, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT}, hostAfter(frame.color));
 }
 
 // Copies L_in and T to the host's AOV images (blit: converts to their format), or, when

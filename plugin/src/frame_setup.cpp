@@ -259,8 +259,7 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   const bool lightOn = light.intensity > 0.0f && glm::length(glm::vec3(toVec(light.color))) > 0.0f;
   out.scatters = lightOn && glm::length(scattering) > 0.0f;
   out.attenuates = glm::length(extinction) > 0.0f;
-  k.extent = glm::uvec4(outputExtent.width, outputExtent.height, out.scatters ? 1u : 0u,
-                        frame.lightColor.empty() ? 0u : 1u);
+  k.extent = glm::uvec4(outputExtent.width, outputExtent.height, 0u, frame.lightColor.empty() ? 0u : 1u);
   return {};
 }
 

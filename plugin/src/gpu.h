@@ -134,8 +134,6 @@ struct ScatteringBindings {
   VkImageLayout lightColorLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   bool hasLightColor = false;
   LightType light = LightType::Directional;
-  /// Some σ_s > 0 and the light is on: L_in is computed. Otherwise the technique writes L_in = 0.
-  bool scatters = true;
   /// The debug view's target (storage, GENERAL) when the frame asks for one, else null.
   VkImageView debug = VK_NULL_HANDLE;
   DebugView debugView = DebugView::None;

@@ -38,9 +38,9 @@ struct FrameConstants {
   vec4 depth_params;      // x: NDC depth of the near plane; y: of the far plane (sky);
                           // z: 1 if the far plane is at infinity; w: sky distance then
   uvec4 counts;           // x: light type; y: medium components; z: shadow maps; w: shadow map size
-  uvec4 extent;           // xy: output extent in pixels; z: 1 when there is in-scattering
-                          // (some σ_s > 0 and the light is on), else L_in = 0 is written;
-                          // w: 1 when a light-colour texture is bound (common/light_color.glsl)
+  uvec4 extent;           // xy: output extent in pixels; z: unused (0; a frame without
+                          // in-scattering runs no technique); w: 1 when a light-colour texture
+                          // is bound (common/light_color.glsl)
 };
 
 TYN_END

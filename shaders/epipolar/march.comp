@@ -128,7 +128,7 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
 // This thread's part of the entry's L_in.
 vec3 tyn_march_entry(uvec2 id, uint part) {
   vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(id));
-  if (coordinates.w <= 0.5 || frame.extent.z == 0u) return vec3(0.0);
+  if (coordinates.w <= 0.5) return vec3(0.0);
   vec3 origin = frame.view_to_world[3].xyz;
   vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
   vec4 origin_direction = epipolar.tree.x != 0u ? imageLoad(slice_uv, ivec2(id.y, 0))

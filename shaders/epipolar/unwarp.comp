@@ -31,10 +31,6 @@ void main() {
   vec2 extent = tyn_output_extent();
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-  if (frame.extent.z == 0u) {
-    imageStore(out_scattering, ivec2(pixel), vec4(0.0));
-    return;
-  }
   float distance = tyn_view_distance(ndc, depth);
 
   vec2 pixel_centre = vec2(pixel) + 0.5;

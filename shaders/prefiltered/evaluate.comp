@@ -93,10 +93,6 @@ void main() {
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   TynViewRay ray = tyn_view_ray(pixel, depth);
   float s = ray.surface_distance;
-  if (frame.extent.z == 0u) {
-    imageStore(out_scattering, ivec2(pixel), vec4(0.0));
-    return;
-  }
 
   // Where the ray ends in the rectified map, and its (constant) rectified depth. Both forms take
   // the ray's direction and length, not a world position (rectification.h "Precision").

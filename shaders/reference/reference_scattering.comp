@@ -22,8 +22,6 @@ void main() {
 
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   TynViewRay ray = tyn_view_ray(pixel, depth);
-  vec3 in_scattering = frame.extent.z != 0u
-                           ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
-                           : vec3(0.0);
+  vec3 in_scattering = tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance);
   imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
 }

@@ -269,17 +269,26 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 
 Outcome EpipolarTechnique::resize(const Gpu& gpu, VkExtent2D extent) {
   destroySizeDependent(gpu);
-  const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height;
-  return createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                            fixupList_);
+  extent_ = extent;
+  return {};
 }
 
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
                                    std::uint32_t shadowBlocks, std::uint64_t frameIndex,
                                    std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
+  // The fix-up list, at the first frame that runs the technique at this size (a context that only
+  // runs the Reference holds none).
+  if (fixupList_.buffer == VK_NULL_HANDLE) {
+    const VkDeviceSize entries = VkDeviceSize(extent_.width) * extent_.height;
+    if (Outcome o = createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
+                                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                       fixupList_);
+        !o) {
+      return o;
+    }
+  }
   if (Outcome o = prepareShadowBlocks(gpu, shadowBlocks, frameIndex, framesInFlight); !o) return o;
   // A tree of L 1D samples takes L − 1 texels per row; without one a 1 × 1 texture keeps the
   // descriptor valid.
@@ -501,76 +510,69 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
   gpu.vk.vkCmdFillBuffer(cmd, textures_.marchList.buffer, 0, kMarchHeaderWords * sizeof(std::uint32_t), 0);
 
-  // Without in-scattering (σ_s = 0 or the light off) only the unwarp runs: it writes L_in = 0
-  // (DESIGN.md "Model only what the scene requires"); the composite computes T.
-  if (bindings.scatters) {
-    pass("epipolar_slice_end_points", slicePipeline_,
+  pass("epipolar_slice_end_points", slicePipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+  pass("epipolar_coordinates", coordinatesPipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+  // Each slice's line in the shadow map and its min/max tree: only for the lights that march
+  // along one line (directional, spot), the tree only when the march uses it. Before the
+  // refinement, which leaves samples whose whole ray the tree shows in shadow out of the march.
+  if (constants.tree.x != 0) {
+    pass("epipolar_slice_uv", sliceUvPipeline_,
          [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-    pass("epipolar_coordinates", coordinatesPipeline_,
-         [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
-    // Each slice's line in the shadow map and its min/max tree: only for the lights that march
-    // along one line (directional, spot), the tree only when the march uses it. Before the
-    // refinement, which leaves samples whose whole ray the tree shows in shadow out of the march.
-    if (constants.tree.x != 0) {
-      pass("epipolar_slice_uv", sliceUvPipeline_,
-           [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-      if (constants.tree.z != 0) {
-        pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
-      }
+    if (constants.tree.z != 0) {
+      pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
     }
-    pass("epipolar_refine", refinePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
-    if (buildTable) {
-      pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
-        gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
-      });
-    }
-    // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
-    // refinement adds.
-    const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
-    auto marchRound = [&](const char* argsName, const char* name) {
-      pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-      indirectPass(name, march, textures_.marchList.buffer, 0);
-    };
-    // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
-    if (constants.tree.x != 0 && constants.tree.z != 0) {
-      pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-      indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, 0);
-    }
-    marchRound("epipolar_march_args", "epipolar_march");
-    if (constants.refinement.y < 1.0f) {
-      pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
-      marchRound("epipolar_march_args_refined", "epipolar_march_refined");
-    }
-    pass("epipolar_interpolate", interpolatePipeline_,
-         [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   }
+  pass("epipolar_refine", refinePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+  if (buildTable) {
+    pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
+      gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
+    });
+  }
+  // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
+  // refinement adds.
+  const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
+  auto marchRound = [&](const char* argsName, const char* name) {
+    pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+    indirectPass(name, march, textures_.marchList.buffer, 0);
+  };
+  // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
+  if (constants.tree.x != 0 && constants.tree.z != 0) {
+    pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+    indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, 0);
+  }
+  marchRound("epipolar_march_args", "epipolar_march");
+  if (constants.refinement.y < 1.0f) {
+    pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+    marchRound("epipolar_march_args_refined", "epipolar_march_refined");
+  }
+  pass("epipolar_interpolate", interpolatePipeline_,
+       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_unwarp", unwarpPipeline_, [&] {
     gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
-  if (bindings.scatters) {
-    pass("epipolar_fixup_args", fixupArgsPipelines_[serialFixup(marchParts_, light) ? 1 : 0],
-         [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
-    // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
-    // enough rays to repay the blocks; fixup_args.comp decides, zero groups otherwise.
-    if (shadowBlocksUsed_) {
-      indirectPass("epipolar_shadow_blocks", shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
-    }
-
-    // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
-    indirectPass("epipolar_fixup", fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer, 0);
+  pass("epipolar_fixup_args", fixupArgsPipelines_[serialFixup(marchParts_, light) ? 1 : 0],
+       [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+  // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
+  // enough rays to repay the blocks; fixup_args.comp decides, zero groups otherwise.
+  if (shadowBlocksUsed_) {
+    indirectPass("epipolar_shadow_blocks", shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
   }
+
+  // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
+  indirectPass("epipolar_fixup", fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer, 0);
 
   if (bindings.debugView != DebugView::None) {
     pass("epipolar_debug_background", debugBackgroundPipeline_, [&] {
       gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                            groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
     });
-    // Without in-scattering nothing was sampled or fixed up: the dimmed (zero) L_in alone.
-    if (bindings.scatters && bindings.debugView == DebugView::EpipolarSamples) {
+    if (bindings.debugView == DebugView::EpipolarSamples) {
       pass("epipolar_debug_samples", debugSamplesPipeline_,
            [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
-    } else if (bindings.scatters) {
+    } else {
       pass("epipolar_debug_fixup", debugFixupPipeline_, [&] { gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0); });
     }
   }

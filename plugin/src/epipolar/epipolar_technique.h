@@ -42,7 +42,8 @@ class EpipolarTechnique {
   /// OnFirstUse); `compiled` says whether anything was.
   Outcome ensurePipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled);
   void destroy(const Gpu& gpu);
-  /// The fix-up list holds every pixel: rebuilt with the output extent.
+  /// The fix-up list holds every pixel: dropped with the output extent, created again by the next
+  /// prepare().
   Outcome resize(const Gpu& gpu, VkExtent2D extent);
 
   /// Makes the sample textures match `settings` and the tree texture hold `treeSamples` 1D
@@ -139,7 +140,8 @@ class EpipolarTechnique {
   bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
   RetireQueue<OwnedImage> retiredShadowBlocks_;
   // Size-dependent.
-  MappedBuffer fixupList_;                   // count, then one packed pixel per entry
+  VkExtent2D extent_{};
+  MappedBuffer fixupList_;                   // count, then one packed pixel per entry; from prepare()
   SampleTextures textures_;
   RetireQueue<SampleTextures> retired_;  // see kSpareTextureSets
   std::uint64_t frameIndex_ = 0;

@@ -277,7 +277,7 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, st
 }
 
 Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
-                                      bool scatters, VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
+                                      VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
                                       std::uint32_t framesInFlight, std::string& note) {
   retired_.release(frameIndex, framesInFlight, [&](Maps& maps) { destroyMaps(gpu, maps); });
 
@@ -384,7 +384,6 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   std::memcpy(constants_[slot].mapped, &k, sizeof(k));
   plan_.basis = basis;
   plan_.sets = sets;
-  plan_.scatters = scatters;
   plan_.filtered = settings.filteredResampling;
   plan_.threadPerRow = settings.prefixSums == PrefixSumScheme::ThreadPerRow;
   plan_.epipoleBlock = blockOnScreen;
@@ -461,30 +460,28 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
   };
 
   // Every map is bound (the evaluation's descriptors name the prefix sums even when it skips
-  // them), so every map is in GENERAL, also in a frame that only writes L_in = 0.
+  // them), so every map is in GENERAL.
   discardToGeneral(gpu, cmd, {&maps_.momentMap, &maps_.rectifiedA, &maps_.rectifiedB, &maps_.prefixA, &maps_.prefixB});
-  if (plan_.scatters) {
-    if (plan_.filtered) {
-      const std::uint32_t size = maps_.momentMapSize;
-      pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {
-        gpu.vk.vkCmdDispatch(cmd, groups(size, gpu::TYN_PF_TEXEL_GROUP), groups(size, gpu::TYN_PF_TEXEL_GROUP), 1);
-      });
-    }
-    pass("prefiltered_rectify", rectifyPipelines_[plan_.basis], [&] {
-      gpu.vk.vkCmdDispatch(cmd, groups(maps_.columns, gpu::TYN_PF_TEXEL_GROUP),
-                           groups(maps_.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
-    });
-    const VkPipeline prefix = plan_.threadPerRow ? threadPerRowPipelines_[plan_.basis] : rowParallelPipelines_[plan_.basis];
-    const std::uint32_t rowsPerGroup = plan_.threadPerRow ? gpu::TYN_PF_THREAD_PER_ROW_GROUP : gpu::TYN_PF_ROWS_PER_GROUP;
-    pass("prefiltered_prefix_sums", prefix, [&] {
-      gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.rows, rowsPerGroup), plan_.sets * slotsOf(storage));
+  if (plan_.filtered) {
+    const std::uint32_t size = maps_.momentMapSize;
+    pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {
+      gpu.vk.vkCmdDispatch(cmd, groups(size, gpu::TYN_PF_TEXEL_GROUP), groups(size, gpu::TYN_PF_TEXEL_GROUP), 1);
     });
   }
+  pass("prefiltered_rectify", rectifyPipelines_[plan_.basis], [&] {
+    gpu.vk.vkCmdDispatch(cmd, groups(maps_.columns, gpu::TYN_PF_TEXEL_GROUP),
+                         groups(maps_.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
+  });
+  const VkPipeline prefix = plan_.threadPerRow ? threadPerRowPipelines_[plan_.basis] : rowParallelPipelines_[plan_.basis];
+  const std::uint32_t rowsPerGroup = plan_.threadPerRow ? gpu::TYN_PF_THREAD_PER_ROW_GROUP : gpu::TYN_PF_ROWS_PER_GROUP;
+  pass("prefiltered_prefix_sums", prefix, [&] {
+    gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.rows, rowsPerGroup), plan_.sets * slotsOf(storage));
+  });
   pass("prefiltered_evaluate", evaluatePipelines_[plan_.basis], [&] {
     gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
-  if (plan_.scatters && plan_.epipoleBlock) {
+  if (plan_.epipoleBlock) {
     // The previous frame's indirect read of the arguments must be done before they are rewritten.
     timer.beginPass(gpu, cmd, "prefiltered_epipole_fixup_args");
     memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, VK_ACCESS_SHADER_WRITE_BIT, kCompute,

@@ -86,6 +86,23 @@ TEST(BenchChoice, TheFloorGoalRulesOutASlowPerformanceCandidate) {
   EXPECT_TRUE(c[2].errorMet);
 }
 
+TEST(BenchChoice, AFloorGoalNoneMeetsKeepsTheSpeedupGoalsMostAccurate) {
+  // Both are fast enough for Performance's 50× and neither is within 4× the floor: the more
+  // accurate one, not the faster (as on a CPU driver, where no technique comes near the floor).
+  Row accurate = row("a", "epipolar", "accurate", 1.9, 100.0, 0.04);
+  Row rough = row("a", "epipolar", "rough", 1.8, 100.0, 0.05);
+  accurate.timeRatioToFloor = 30.0;
+  rough.timeRatioToFloor = 28.0;
+  Row slow = row("a", "epipolar", "slow", 2.5, 100.0, 0.01);  // 40×: too slow for Performance
+  slow.timeRatioToFloor = 40.0;
+  const std::vector<Summary> s = summarize({accurate, rough, slow}, 64, 36, 256);
+  const std::vector<ProfileChoiceResult> c = chooseProfiles(s);
+  ASSERT_TRUE(c[2].summary);
+  EXPECT_EQ(s[*c[2].summary].parameters, "accurate");
+  EXPECT_TRUE(c[2].speedMet);
+  EXPECT_FALSE(c[2].floorMet);
+}
+
 TEST(BenchChoice, ThePerSceneBarHoldsWhereSomeConfigurationMeetsIt) {
   // X is more accurate by the median but misses High's 3% on scene b, which Y meets; on scene c
   // neither meets any bar, so c decides nothing.

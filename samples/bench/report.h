@@ -37,10 +37,10 @@ std::vector<Summary> summarize(const std::vector<Row>& rows, std::uint32_t width
 
 /// A profile's goals (the issue's, at 1920×1080 with a 2048² map, medians over the scenes) and the
 /// configuration picked for it: of those that meet the per-scene bar and the speed goal (and the
-/// floor goal), the one with
-/// the lowest median relative RMSE — a point of the Pareto front by construction, and distinct tiers
-/// where the front allows — or, if none is fast enough, the fastest (a miss). Whether it meets the
-/// error goal is reported.
+/// floor goal), the one with the lowest median relative RMSE — a point of the Pareto front by
+/// construction, and distinct tiers where the front allows. If none meets the floor goal too, the
+/// most accurate of those that meet the speedup goal; if none is fast enough, the fastest (a
+/// miss). Whether it meets the error goal is reported.
 struct ProfileGoal {
   Profile profile;             ///< High, Balanced, Performance
   double maxRelativeRmse;      ///< 0.02, 0.04, 0.08

@@ -411,9 +411,12 @@ struct Stats {
   Profile requestedProfile = Profile::Balanced;
   /// The profile whose settings ran: the requested one, or the one Auto chose within its budget.
   Profile profileUsed = Profile::Balanced;
+  /// The technique that ran. None when the frame needed none: a medium without extinction (the
+  /// back buffer is left as it is) or one where nothing scatters (σ_s = 0 or the light off: L_in
+  /// is cleared, pass "scattering_clear", and the back buffer attenuated).
   Technique technique = Technique::None;
-  /// Why that technique ran (e.g. "profile table: Balanced -> Reference until the epipolar
-  /// technique lands"); empty when nothing was recorded.
+  /// Why that technique ran (e.g. "profile table: Balanced -> epipolar, 256 slices x 256 samples");
+  /// empty when nothing was recorded.
   std::string techniqueNote;
   /// Names of the passes recorded in the last `record` call, in order.
   std::vector<std::string> passesRecorded;

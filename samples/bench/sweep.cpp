@@ -221,7 +221,11 @@ class Sweep {
     if (options_.interleaved) {
       // Every subject alive at once: the group's memory is the sum of theirs.
       for (Subject& subject : subjects) {
-        if (!open(scene, settings, subject, error)) return false;
+        if (!open(scene, settings, subject, error)) {
+          error = where + " " + subject.name + ": " + error + " (" + std::to_string(subjects.size()) +
+                  " contexts at once; --sequential keeps one alive at a time)";
+          return false;
+        }
       }
       std::vector<Subject*> all;
       for (Subject& subject : subjects) all.push_back(&subject);
@@ -232,10 +236,11 @@ class Sweep {
     } else {
       for (Subject& subject : subjects) {
         std::vector<Subject*> one{&subject};
-        if (!open(scene, settings, subject, error) || !timeFrames(where, one, error) ||
-            !finish(where, scene, subject, error)) {
+        if (!open(scene, settings, subject, error)) {
+          error = where + " " + subject.name + ": " + error;
           return false;
         }
+        if (!timeFrames(where, one, error) || !finish(where, scene, subject, error)) return false;
       }
     }
 

@@ -247,11 +247,11 @@ Outcome Context::Impl::ensurePipelines(Technique technique, const FrameDesc& fra
 }
 
 Outcome Context::Impl::createSizeDependent() {
-  if (Outcome o = epipolar.resize(gpu, extent); !o) return o;
   return createImage(gpu, kTargetFormat, extent, kTargetUsage, scattering);
 }
 
 void Context::Impl::destroySizeDependent() {
+  epipolar.destroySizeDependent(gpu);
   destroyImage(gpu, debugImage);
   destroyImage(gpu, scattering);
 }
@@ -462,7 +462,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
                                            ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)
                                            : 0;
     epipolarK.arc.w = static_cast<float>(shadowBlocks);  // fixup_args.comp sizes the blocks pass by it
-    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, shadowBlocks, stats.frameIndex,
+    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, shadowBlocks, extent, stats.frameIndex,
                                      desc.maxFramesInFlight);
         !o) {
       return fail(o);

@@ -267,20 +267,14 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   *this = EpipolarTechnique{};
 }
 
-Outcome EpipolarTechnique::resize(const Gpu& gpu, VkExtent2D extent) {
-  destroySizeDependent(gpu);
-  extent_ = extent;
-  return {};
-}
-
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                                   std::uint32_t shadowBlocks, std::uint64_t frameIndex,
+                                   std::uint32_t shadowBlocks, VkExtent2D extent, std::uint64_t frameIndex,
                                    std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
-  // The fix-up list, at the first frame that runs the technique at this size (a context that only
-  // runs the Reference holds none).
+  // The fix-up list, at the first frame that runs the technique at this extent (a context that
+  // only runs the Reference holds none).
   if (fixupList_.buffer == VK_NULL_HANDLE) {
-    const VkDeviceSize entries = VkDeviceSize(extent_.width) * extent_.height;
+    const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height;
     if (Outcome o = createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                            VK_BUFFER_USAGE_TRANSFER_SRC_BIT,

@@ -42,17 +42,19 @@ class EpipolarTechnique {
   /// OnFirstUse); `compiled` says whether anything was.
   Outcome ensurePipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled);
   void destroy(const Gpu& gpu);
-  /// The fix-up list holds every pixel: dropped with the output extent, created again by the next
-  /// prepare().
-  Outcome resize(const Gpu& gpu, VkExtent2D extent);
+  /// Drops the fix-up list, which holds every pixel: for a new output extent (the GPU idle). The
+  /// next prepare() creates it at that extent.
+  void destroySizeDependent(const Gpu& gpu);
 
   /// Makes the sample textures match `settings` and the tree texture hold `treeSamples` 1D
   /// samples per slice (0: no tree is built this frame). Textures of other sizes are kept until no
   /// frame in flight can use them (frames in flight need no stall when the parameters change).
   /// `shadowBlocks`: blocks along each side of the fix-up's shadow-map block image (a directional
-  /// light's map, shadowBlockCount), 0 when the frame needs none.
+  /// light's map, shadowBlockCount), 0 when the frame needs none. `extent`: the output's, for the
+  /// fix-up list, created by the first frame that runs the technique at that extent.
   Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                  std::uint32_t shadowBlocks, std::uint64_t frameIndex, std::uint32_t framesInFlight);
+                  std::uint32_t shadowBlocks, VkExtent2D extent, std::uint64_t frameIndex,
+                  std::uint32_t framesInFlight);
 
   /// Records every pass; each is timed and appended to `passes`. The host inputs must already
   /// be readable by compute shaders and the targets writable (GENERAL).
@@ -91,7 +93,6 @@ class EpipolarTechnique {
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);
   Outcome prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
                               std::uint32_t framesInFlight);
-  void destroySizeDependent(const Gpu& gpu);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
   Outcome createCommonPipelines(const Gpu& gpu);
 
@@ -140,7 +141,6 @@ class EpipolarTechnique {
   bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
   RetireQueue<OwnedImage> retiredShadowBlocks_;
   // Size-dependent.
-  VkExtent2D extent_{};
   MappedBuffer fixupList_;                   // count, then one packed pixel per entry; from prepare()
   SampleTextures textures_;
   RetireQueue<SampleTextures> retired_;  // see kSpareTextureSets

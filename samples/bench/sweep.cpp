@@ -338,20 +338,16 @@ class Sweep {
       if (frame >= options_.warmUpFrames) subject.run.totals.push_back(*ms);
       return true;
     };
-    if (n > 1) {
-      for (std::uint32_t frame = 0; frame < frames; ++frame) {
-        for (std::size_t i = 0; i < n; ++i) {
-          if (!renderOne(*subjects[(frame + i) % n], frame)) return false;
-        }
+    for (std::uint32_t frame = 0; frame < frames; ++frame) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (!renderOne(*subjects[(frame + i) % n], frame)) return false;
+      }
+      if (n > 1) {
         progress(where + ": round " + std::to_string(frame + 1) + " of " + std::to_string(frames) + " (" +
                  std::to_string(n) + " subjects, " + std::to_string(options_.warmUpFrames) + " rounds of warm-up)");
       }
-    } else {
-      for (std::uint32_t frame = 0; frame < frames; ++frame) {
-        if (!renderOne(*subjects[0], frame)) return false;
-      }
-      progress(where + " " + subjects[0]->name + ": " + std::to_string(frames) + " frames");
     }
+    if (n == 1) progress(where + " " + subjects[0]->name + ": " + std::to_string(frames) + " frames");
     return true;
   }
 

@@ -303,10 +303,19 @@ TEST(Profiles, AutoFitsTheBudget) {
     // The profile it runs has been measured under Auto, and the stats say so.
     EXPECT_GT(estimates[ladderIndex(expected)], 0.0);
   };
-  run(1e6, Profile::High);
-  run(1e-3, Profile::Performance);
-  const double high = estimates[0];
-  const double balanced = estimates[1];
+  // The estimates are the context's own timestamps of a few frames each; on a CPU driver another
+  // test on the other core can inflate one profile's window (CI measured Balanced 43.7 ms, then
+  // 53.2 ms, in one run), so the pair is measured again, at most twice, while it does not show
+  // High clearly dearer (below). Every run's assertions hold each time.
+  double high = 0.0;
+  double balanced = 0.0;
+  for (int attempt = 0; attempt < 3 && !(high > 1.3 * balanced && balanced > 0.0); ++attempt) {
+    if (attempt > 0) std::printf("[ auto ] high %.3g ms vs balanced %.3g ms: measured again\n", high, balanced);
+    run(1e6, Profile::High);
+    run(1e-3, Profile::Performance);
+    high = estimates[0];
+    balanced = estimates[1];
+  }
   ASSERT_GT(balanced, 0.0) << "Auto passed Balanced on its way down without measuring it";
   // The middle budget needs High clearly dearer than Balanced. Auto climbs back to a profile it
   // measured within 80% of the budget (AutoProfile::kClimbShare), and 80% of this budget lies

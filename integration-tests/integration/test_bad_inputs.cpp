@@ -163,6 +163,8 @@ std::vector<BadCase> badEpipolarSettings() {
       {"epipolar.epipoleFixupRadius", [](EpipolarSettings& s) { s.epipoleFixupRadius = 300.0f; }},
       {"epipolar.epipoleFixupHeightFraction", [](EpipolarSettings& s) { s.epipoleFixupHeightFraction = -0.01f; }},
       {"epipolar.fixupSteps", [](EpipolarSettings& s) { s.fixupSteps = 257; }},
+      {"epipolar.coloredStep", [](EpipolarSettings& s) { s.coloredStep = 0; }},
+      {"epipolar.coloredStep", [](EpipolarSettings& s) { s.coloredStep = 24; }},
   };
   std::vector<BadCase> cases;
   for (const auto& [field, mutate] : fields) {

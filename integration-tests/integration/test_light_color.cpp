@@ -2,7 +2,9 @@
 // where the light reaches, so a constant texture scales L_in channel by channel in every technique;
 // a spot light is used because every point it lights lies inside its map's square (outside the
 // square a directional light is unfiltered, by contract).
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -71,6 +73,54 @@ TEST(LightColor, ConstantColourScalesEveryTechnique) {
   }
   expectNoValidationMessages();
   std::filesystem::remove(texture.path);
+}
+
+// A directional light's coloured march (light_color_sums.h): lit sections in chunks of
+// coloredStep cells, each times its mean colour from the slices' prefix sums, against chunks of
+// one cell (yusov2013's fine step, one colour per cell) and against the Reference. The chunks may
+// only move L_in by the colour's covariance with the attenuation inside them, far below the
+// technique's own error here; a spot light keeps its quadrature chunks and records no sums pass.
+TEST(LightColor, DirectionalChunksMatchTheFineStep) {
+  const host::Scene scene = loadTestScene("stained-glass-sun");
+  ASSERT_EQ(scene.light.type, host::LightType::Directional);
+  samples::RenderOptions o;
+  o.width = 160;
+  o.height = 90;
+  o.shadowMapSize = 1024;
+  o.technique = Technique::Reference;
+  const samples::RenderResult reference = renderWithAovs(scene, o);
+  o.technique = Technique::Epipolar;
+  o.epipolar = EpipolarSettings{};
+  o.epipolar->coloredStep = 1;
+  const samples::RenderResult fine = renderWithAovs(scene, o);
+  o.epipolar->coloredStep = EpipolarSettings{}.coloredStep;
+  const samples::RenderResult chunked = renderWithAovs(scene, o);
+  const ErrorStats fineError = compareRgb(fine.scattering, reference.scattering);
+  const ErrorStats chunkedError = compareRgb(chunked.scattering, reference.scattering);
+  const ErrorStats change = compareRgb(chunked.scattering, fine.scattering);
+  std::printf("[ stained-glass-sun ] fine step vs reference: %s; chunks of %u vs reference: %s; chunks vs fine step: %s\n",
+              describe(fineError).c_str(), EpipolarSettings{}.coloredStep, describe(chunkedError).c_str(),
+              describe(change).c_str());
+  for (const samples::RenderResult* r : {&fine, &chunked}) {
+    EXPECT_EQ(r->stats.technique, Technique::Epipolar);
+    const auto& passes = r->stats.passesRecorded;
+    EXPECT_NE(std::find(passes.begin(), passes.end(), "epipolar_light_color_sums"), passes.end());
+  }
+  EXPECT_EQ(chunkedError.nonFinite, 0u);
+  EXPECT_GT(chunkedError.meanReference, 0.0);
+  EXPECT_LE(chunkedError.relativeRmse, 0.04) << describe(chunkedError);  // Balanced's goal
+  EXPECT_LE(change.relativeRmse, 1e-4) << describe(change);
+  EXPECT_LE(chunkedError.relativeRmse, fineError.relativeRmse + 1e-3);
+
+  // The spot lamp behind the same window: quadrature chunks, no sums.
+  o.width = 96;
+  o.height = 54;
+  const samples::RenderResult spot = renderWithAovs(loadTestScene("stained-glass"), o);
+  EXPECT_EQ(spot.stats.technique, Technique::Epipolar);
+  const auto& spotPasses = spot.stats.passesRecorded;
+  EXPECT_EQ(std::find(spotPasses.begin(), spotPasses.end(), "epipolar_light_color_sums"), spotPasses.end());
+  EXPECT_NE(std::find(spotPasses.begin(), spotPasses.end(), "epipolar_march"), spotPasses.end());
+  expectNoValidationMessages();
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "epipolar/light_color_sums.h"
 #include "epipolar/min_max_tree.h"
 
 namespace {
@@ -67,7 +68,7 @@ struct SliceAccess {
     }
     return slice->samples[static_cast<size_t>(k)];
   }
-  vec3 color(float) const { return vec3(1.0f); }
+  vec3 color_mean(float, float) const { return vec3(1.0f); }
 };
 
 enum class Profile { Smooth, Noisy, ClearRuns, Steps, Constant };
@@ -502,13 +503,46 @@ TEST(MinMaxShadowTest, DescendsUnderATiltedOccluder) {
   EXPECT_EQ(access.bad_reads, 0);
 }
 
-// A light-colour texture along the slice (coloured shafts): a smooth, channel-varying colour.
-struct ColoredAccess : SliceAccess {
-  vec3 color(float u) const {
-    return vec3(0.6f + 0.4f * std::sin(0.37f * u), 0.5f + 0.5f * std::cos(0.11f * u), 0.25f);
-  }
-};
+// A light-colour texture along the slice (coloured shafts): a channel-varying colour in [0, 1]
+// (fast in red: 0.37 rad a cell, about a colour texel of 8 cells), taken per cell at its centre and
+// summed in float as light_color_sums.comp does (runs of consecutive cells, then the runs'
+// offsets), read through light_color_sums.h's mean.
 dvec3 colorDouble(double u) { return dvec3(0.6 + 0.4 * std::sin(0.37 * u), 0.5 + 0.5 * std::cos(0.11 * u), 0.25); }
+
+struct ColorSums {
+  std::vector<vec3> sums;  // S_k
+  vec3 sum(int k) const { return sums[static_cast<size_t>(k)]; }
+};
+
+ColorSums buildColorSums(int n, bool white, int run = 16) {
+  ColorSums s;
+  s.sums.resize(static_cast<size_t>(n));
+  vec3 offset(0.0f);
+  for (int first = 0; first < n; first += run) {
+    vec3 sum(0.0f);
+    for (int k = first; k < std::min(first + run, n); ++k) {
+      sum += white ? vec3(1.0f) : vec3(colorDouble(k + 0.5));
+      s.sums[static_cast<size_t>(k)] = sum;
+    }
+    for (int k = first; k < std::min(first + run, n); ++k) s.sums[static_cast<size_t>(k)] += offset;
+    offset += sum;
+  }
+  return s;
+}
+
+struct ColoredAccess : SliceAccess {
+  const ColorSums* colors;
+  vec3 color_mean(float a, float b) const { return tyn_color_sums_mean(*colors, slice->sample_count, a, b); }
+};
+
+// ∫_a^b c(u) du of the cells' colours, in double.
+double colorIntegralDouble(double a, double b, int channel) {
+  double sum = 0.0;
+  for (int k = int(std::floor(a)); double(k) < b; ++k) {
+    sum += colorDouble(k + 0.5)[channel] * std::max(0.0, std::min(b, double(k + 1)) - std::max(a, double(k)));
+  }
+  return sum;
+}
 
 // The plain march's lit parts merged where they touch inside one chunk of `chunk` cells: the
 // sections a coloured march integrates (tyn_min_max_add_colored).
@@ -525,31 +559,71 @@ Intervals coloredSectionsDouble(const Slice& s, const TynMinMaxRay& r, int chunk
   return sections;
 }
 
-// Coloured marches, with chunks of one cell (yusov2013's fine step, a directional light's) and of
-// eight (a spot light's under a coarser colour texture): the tree (which then only skips shadowed
-// nodes whole) still equals the plain march, both equal Σ colour(middle of the section) · ∫ over
-// the section in double, and a white light gives the uncoloured march's result.
+// The sums and their mean: S_k against double, a mean inside one cell is that cell's colour, and
+// means over random sections against double.
+TEST(LightColorSums, MeansMatchDouble) {
+  EXPECT_EQ(tyn_color_sums_width(2048), 2048);
+  EXPECT_EQ(tyn_color_sums_rows(2048), 1);
+  EXPECT_EQ(tyn_color_sums_width(8192), 4096);
+  EXPECT_EQ(tyn_color_sums_rows(8192), 2);
+  EXPECT_EQ(tyn_color_sums_texel(8192, 3, 5000), ivec2(5000 - 4096, 7));
+  std::mt19937 rng(7);
+  for (int n : {64, 2048}) {
+    const ColorSums sums = buildColorSums(n, false);
+    double worst = 0.0;
+    for (int i = 0; i < 20000; ++i) {
+      float a = uniform(rng, 0.0f, float(n));
+      float b = i % 3 == 0 ? std::min(float(n), a + uniform(rng, 0.0f, 1.5f)) : uniform(rng, a, float(n));
+      if (i % 7 == 0) a = std::floor(a);  // sections starting on a cell edge
+      if (!(b > a)) continue;
+      const vec3 mean = tyn_color_sums_mean(sums, n, a, b);
+      for (int c = 0; c < 3; ++c) {
+        const double expected = colorIntegralDouble(a, b, c) / (double(b) - double(a));
+        const double err = std::abs(double(mean[c]) - expected);
+        worst = std::max(worst, err);
+        // One float ulp of S at n (the sums' rounding, light_color_sums.h) over the section's length
+        // (at least the part of a cell it spans), and a few ulps of the colour.
+        const double ulp = std::nextafter(float(n), 2.0f * float(n)) - float(n);
+        ASSERT_LE(err, 4.0 * ulp / std::max(double(b) - double(a), 1.0) + 1e-6)
+            << "n " << n << " [" << a << ", " << b << "] channel " << c;
+      }
+    }
+    // Inside one cell: exactly that cell's colour as summed (S_k − S_{k−1}).
+    for (int k : {0, 1, n / 2, n - 1}) {
+      const vec3 mean = tyn_color_sums_mean(sums, n, float(k) + 0.25f, float(k) + 0.5f);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], colorDouble(k + 0.5)[c], 4e-4) << k;
+    }
+    std::printf("[ ColorSums ] L %d: worst mean vs double %.2e\n", n, worst);
+  }
+}
+
+// Coloured marches, with chunks of one cell (yusov2013's fine step), eight and 32 (the default):
+// the tree (which then only skips shadowed nodes whole) still equals the plain march, both equal
+// Σ mean colour · ∫ over each section in double, and a white light gives the uncoloured march's
+// result.
 TEST(MinMaxMarch, ColoredTreeEqualsColoredPlainAndDouble) {
-  EXPECT_EQ(tyn_min_max_colored_chunk(2048, 256), 8);
-  EXPECT_EQ(tyn_min_max_colored_chunk(2048, 300), 4);  // 6.8 shadow texels per colour texel
-  EXPECT_EQ(tyn_min_max_colored_chunk(512, 4096), 1);
+  EXPECT_EQ(tyn_min_max_local_colored_chunk(2048, 256), 8);
+  EXPECT_EQ(tyn_min_max_local_colored_chunk(2048, 300), 4);  // 6.8 shadow texels per colour texel
+  EXPECT_EQ(tyn_min_max_local_colored_chunk(512, 4096), 1);
   std::mt19937 rng(48);
-  for (int chunk : {1, 8}) {
+  for (int chunk : {1, 8, 32}) {
     double worst_tree = 0.0, worst_double = 0.0, worst_white = 0.0;
     long plain_steps = 0, tree_steps = 0, uncolored_tree_steps = 0, cell_tree_steps = 0;
     for (Profile kind : kProfiles) {
       for (int n : {64, 512}) {
+        const ColorSums sums = buildColorSums(n, false);
+        const ColorSums white_sums = buildColorSums(n, true);
         for (int p = 0; p < 6; ++p) {
           const Slice s = makeProfile(kind, n, rng);
           for (int i = 0; i < 40; ++i) {
             const TynMinMaxRay r = randomRay(n, rng);
-            const ColoredAccess colored{{&s, tyn_min_max_highest_level(n)}};
-            const SliceAccess white{&s, tyn_min_max_highest_level(n)};
+            const ColoredAccess colored{{&s, tyn_min_max_highest_level(n)}, &sums};
+            const ColoredAccess white{{&s, tyn_min_max_highest_level(n)}, &white_sums};
             const TynMinMaxMarch plain = tyn_min_max_march_plain(colored, n, r, chunk);
             const TynMinMaxMarch tree = tyn_min_max_march_tree(colored, n, tyn_min_max_highest_level(n), r, chunk);
             // Every maximum step: a lit node is walked chunk by chunk from whichever level found it.
             for (int top = -1; top <= tyn_min_max_highest_level(n) + 1; ++top) {
-              const ColoredAccess capped{{&s, std::min(top, tyn_min_max_highest_level(n))}};
+              const ColoredAccess capped{{&s, std::min(top, tyn_min_max_highest_level(n))}, &sums};
               const TynMinMaxMarch step_tree = tyn_min_max_march_tree(capped, n, top, r, chunk);
               for (int c = 0; c < 3; ++c) {
                 const double rel = relativeDifference(step_tree.lit_integral[c], plain.lit_integral[c]);
@@ -568,17 +642,17 @@ TEST(MinMaxMarch, ColoredTreeEqualsColoredPlainAndDouble) {
               worst_tree = std::max(worst_tree, relativeDifference(tree.lit_integral[c], plain.lit_integral[c]));
               ASSERT_LE(relativeDifference(tree.lit_integral[c], plain.lit_integral[c]), 1e-6)
                   << profileName(kind) << " L " << n << " ray " << i << " chunk " << chunk;
-              // Σ colour(middle) · ∫ over each section, in double.
+              // Σ mean colour · ∫ over each section, in double.
               double expected = 0.0, full = 0.0;
               for (const auto& [a, b] : coloredSectionsDouble(s, r, chunk)) {
-                expected += colorDouble(0.5 * (a + b))[c] * integrate(r, {{a, b}}, c);
+                expected += colorIntegralDouble(a, b, c) / (b - a) * integrate(r, {{a, b}}, c);
               }
               const double a = std::clamp(double(r.u_begin), 0.0, double(n));
               full = integrate(r, {{a, std::clamp(double(r.u_end), a, double(n))}}, c);
               const double err = std::abs(double(plain.lit_integral[c]) - expected);
               worst_double = std::max(worst_double, full > 0.0 ? err / full : err);
               const double position_ulp = std::nextafter(float(n), 2.0f * float(n)) - float(n);
-              ASSERT_LE(err, 1e-4 * full + 4.0 * position_ulp * std::abs(double(r.t_slope)) + 1e-9)
+              ASSERT_LE(err, 2e-4 * full + 4.0 * position_ulp * std::abs(double(r.t_slope)) + 1e-9)
                   << profileName(kind) << " L " << n << " ray " << i << " channel " << c << " chunk " << chunk;
               const double white_difference =
                   relativeDifference(white_colored.lit_integral[c], uncolored.lit_integral[c]);
@@ -590,8 +664,8 @@ TEST(MinMaxMarch, ColoredTreeEqualsColoredPlainAndDouble) {
       }
     }
     // Shadowed nodes are still skipped whole and lit ones walked chunk by chunk: the coloured tree
-    // costs more than the uncoloured one and less than the plain march, and chunks of eight cells
-    // cost less than single cells.
+    // costs more than the uncoloured one and less than the plain march, and longer chunks cost
+    // less than single cells.
     EXPECT_GT(tree_steps, uncolored_tree_steps);
     EXPECT_LT(tree_steps, plain_steps);
     if (chunk > 1) {
@@ -602,6 +676,62 @@ TEST(MinMaxMarch, ColoredTreeEqualsColoredPlainAndDouble) {
                 "uncoloured tree %ld\n",
                 chunk, worst_tree, worst_double, worst_white, plain_steps, tree_steps, cell_tree_steps,
                 uncolored_tree_steps);
+  }
+}
+
+// What a chunk costs in accuracy: against the exact coloured integral Σ_k c_k ∫_cell e^{−σt} dt
+// (double), a chunk of h scene units (chunk cells × |dt/du|) is off by at most
+// max|c − c̄| · ∫ |w − w̄| ≤ (max c − min c) · σh e^{σh} · W over the chunk (w = e^{−σt}, W = ∫ w:
+// |w − w̄| ≤ w_max − w_min ≤ w_max σh and W ≥ h w_min = h w_max e^{−σh}); so the whole ray is off by
+// at most σ h e^{σh} of its unshadowed integral, with c ∈ [0, 1]. Fully lit rays at several optical
+// depths per chunk; the error must stay within that bound and shrink with the chunk; the chunk
+// tyn_min_max_directional_colored_chunk picks keeps σh within TYN_MIN_MAX_COLORED_OPTICAL_DEPTH.
+TEST(MinMaxMarch, ColoredChunkErrorWithinItsBound) {
+  const int n = 512;
+  Slice s;
+  s.sample_count = n;
+  s.samples.assign(n, 1.0f);
+  s.cells.assign(n, vec2(1.0f));
+  buildTree(s);
+  const ColorSums sums = buildColorSums(n, false);
+  const ColoredAccess access{{&s, tyn_min_max_highest_level(n)}, &sums};
+  for (float t_per_cell : {0.01f, 0.1f, 1.0f}) {
+    const vec3 sigma(0.05f, 0.2f, 0.0f);
+    const TynMinMaxRay r = tyn_min_max_ray(0.0f, float(n), 0.0f, 0.0f, 2.0f, 2.0f + t_per_cell * float(n), sigma);
+    double previous = 0.0;
+    for (int chunk : {1, 4, 32, 256}) {
+      const TynMinMaxMarch m = tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), r, chunk);
+      double worst = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        double exact = 0.0;
+        for (int k = 0; k < n; ++k) exact += colorDouble(k + 0.5)[c] * integrate(r, {{double(k), double(k + 1)}}, c);
+        const double full = integrate(r, {{0.0, double(n)}}, c);
+        const double sh = double(sigma[c]) * chunk * t_per_cell;
+        const double err = std::abs(double(m.lit_integral[c]) - exact) / full;
+        worst = std::max(worst, err);
+        EXPECT_LE(err, sh * std::exp(sh) + 1e-5) << "dt/du " << t_per_cell << " chunk " << chunk << " channel " << c;
+      }
+      std::printf("[ MinMax ] coloured chunk error, dt/du %.2f, chunk %3d: %.2e of the unshadowed integral\n",
+                  t_per_cell, chunk, worst);
+      // The ray's own chunk for this largest chunk: within the optical-depth cap, so within its bound.
+      const int own = tyn_min_max_directional_colored_chunk(r, chunk);
+      const double tau = 0.2 * own * t_per_cell;  // σ's largest channel
+      EXPECT_LE(own, chunk);
+      EXPECT_TRUE(own == 1 || tau <= TYN_MIN_MAX_COLORED_OPTICAL_DEPTH + 1e-6) << own;
+      EXPECT_TRUE(own == chunk || 2.0 * tau > TYN_MIN_MAX_COLORED_OPTICAL_DEPTH) << "not the largest: " << own;
+      const TynMinMaxMarch capped = tyn_min_max_march_tree(access, n, tyn_min_max_highest_level(n), r, own);
+      for (int c = 0; c < 3; ++c) {
+        double exact = 0.0;
+        for (int k = 0; k < n; ++k) exact += colorDouble(k + 0.5)[c] * integrate(r, {{double(k), double(k + 1)}}, c);
+        const double full = integrate(r, {{0.0, double(n)}}, c);
+        EXPECT_LE(std::abs(double(capped.lit_integral[c]) - exact) / full,
+                  std::max(tau, 0.2 * t_per_cell) * std::exp(std::max(tau, 0.2 * t_per_cell)) + 1e-5);
+      }
+      if (chunk > 4) {
+        EXPECT_GT(worst, previous * 0.5) << "error should not vanish as chunks grow";
+      }
+      previous = worst;
+    }
   }
 }
 

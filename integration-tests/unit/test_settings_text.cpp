@@ -29,11 +29,12 @@ TEST(SettingsText, EveryEpipolarFieldRoundTrips) {
   s.epipoleFixupRadius = 24.0f;
   s.epipoleFixupHeightFraction = 0.05f;
   s.fixupSteps = 48;
+  s.coloredStep = 8;
   const std::string text = describe(s);
   EXPECT_EQ(text,
             "slices=1024,samples=512,improved-placement=0,initial-step=32,refinement=0.07,intensity-refinement=0.15,"
             "density=3.5,tree=0,max-tree-step=64,bilateral=0.1,fixup-weight=0.2,slice-contrast=0.15,epipole-radius=24,"
-            "epipole-fraction=0.05,fixup-steps=48");
+            "epipole-fraction=0.05,fixup-steps=48,colored-step=8");
   EpipolarSettings back;
   std::string error;
   ASSERT_TRUE(parseEpipolarSettings(text, back, error)) << error;

@@ -20,7 +20,7 @@ struct EpipolarField {
 };
 
 // In EpipolarSettings' order; describe() writes them in this order.
-const std::array<EpipolarField, 15> kEpipolarFields{{
+const std::array<EpipolarField, 16> kEpipolarFields{{
     {"slices", &EpipolarSettings::slices},
     {"samples", &EpipolarSettings::samplesPerSlice},
     {"improved-placement", nullptr, nullptr, &EpipolarSettings::improvedSamplePlacement},
@@ -36,6 +36,7 @@ const std::array<EpipolarField, 15> kEpipolarFields{{
     {"epipole-radius", nullptr, &EpipolarSettings::epipoleFixupRadius},
     {"epipole-fraction", nullptr, &EpipolarSettings::epipoleFixupHeightFraction},
     {"fixup-steps", &EpipolarSettings::fixupSteps},
+    {"colored-step", &EpipolarSettings::coloredStep},
 }};
 
 constexpr std::array<const char*, 6> kBasisNames{"moments4_64", "moments4_128", "moments6_64",
@@ -91,7 +92,7 @@ void append(std::string& out, const std::string& key, const std::string& value) 
 
 const char* const kEpipolarKeys =
     "slices, samples, improved-placement (0|1), initial-step, refinement, intensity-refinement, density, tree (0|1), "
-    "max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius, epipole-fraction, fixup-steps";
+    "max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius, epipole-fraction, fixup-steps, colored-step";
 const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "

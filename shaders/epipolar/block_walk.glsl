@@ -9,7 +9,7 @@
 // only by rounding (one integral instead of the texels' several), and per texel the verdict is
 // the same, because the ray's clip depth z/w is monotonic in t where w > 0, so its extremes over a
 // block are at the block's ends. With a light-colour texture lit blocks are walked too (their
-// colour is taken per texel segment). Needs `shadow_blocks` (binding 17) in scope.
+// colour is taken per texel segment). Needs `shadow_blocks` (binding 7) in scope.
 #ifndef TYNDALL_BLOCK_WALK_GLSL
 #define TYNDALL_BLOCK_WALK_GLSL
 

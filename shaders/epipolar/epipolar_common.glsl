@@ -61,6 +61,9 @@ layout(set = 0, binding = 15) uniform sampler2D light_color;
 // The spot and point lights' semi-analytic scattering table (epipolar/scattering_lut.h), built by
 // scattering_lut.comp when the medium changes; a 1×1 placeholder before a local light needs it.
 layout(set = 0, binding = 16, rgba32f) uniform image2D scattering_lut;
+// One slice's prefix sums of the light-colour texture along its line (light_color_sums.h's
+// layout), rebuilt every frame that has a light-colour texture; 1 × 1 otherwise.
+layout(set = 0, binding = 17, rgba32f) uniform image2D light_color_sums;
 // The debug view (DebugView), bound only for the debug passes.
 layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D debug_image;
 

@@ -55,14 +55,15 @@
 //                                    is tyn_min_max_level_offset(L, level) + index
 //   TYN_MIN_MAX_INTEGRATE(ray, a, b) optional, vec3: ∫ over the lit part u ∈ [a, b]; defaults to the
 //                                    directional closed form (a spot light plugs its LUT in here)
-//   TYN_MIN_MAX_COLOR(u)             optional, vec3: the light's colour at 1D position u (coloured
-//                                    shafts, tyn_min_max_add_colored); defaults to white
+//   TYN_MIN_MAX_COLOR_MEAN(a, b)     optional, vec3: the light's mean colour over [a, b] (coloured
+//                                    shafts, tyn_min_max_add_colored; light_color_sums.h gives it
+//                                    from prefix sums); defaults to white
 // Only the functions whose accessors are defined are compiled. Example (march pass):
 //   #define TYN_MIN_MAX_FETCH(level, index) texelFetch(min_max_tree,
 //       ivec2(tyn_min_max_level_offset(L, level) + (index), slice), 0).xy     (on one line)
 // In C++ each of these functions is a template whose first parameter is an accessor object with
 // the members it uses: `float shadow_texel(ivec2) const`, `float sample(int) const`,
-// `vec2 fetch(int level, int index) const`, `vec3 color(float u) const`. The arguments after it are
+// `vec2 fetch(int level, int index) const`, `vec3 color_mean(float a, float b) const`. The arguments after it are
 // the same in both languages.
 // IMPORTANT: the samples and the tree must be built from the same shadow map with the same
 // origin/step, or the tree is no longer exact.
@@ -78,7 +79,7 @@
 #define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_access.shadow_texel(texel)
 #define TYN_MIN_MAX_SAMPLE(k) tyn_access.sample(k)
 #define TYN_MIN_MAX_FETCH(level, index) tyn_access.fetch(level, index)
-#define TYN_MIN_MAX_COLOR(u) tyn_access.color(u)
+#define TYN_MIN_MAX_COLOR_MEAN(a, b) tyn_access.color_mean(a, b)
 #else
 #define TYN_MIN_MAX_TEMPLATE
 #define TYN_MIN_MAX_ACCESS
@@ -88,8 +89,8 @@
 #ifndef TYN_MIN_MAX_INTEGRATE
 #define TYN_MIN_MAX_INTEGRATE(ray, a, b) tyn_min_max_directional_integral(ray, a, b)
 #endif
-#ifndef TYN_MIN_MAX_COLOR
-#define TYN_MIN_MAX_COLOR(u) vec3(1.0f)
+#ifndef TYN_MIN_MAX_COLOR_MEAN
+#define TYN_MIN_MAX_COLOR_MEAN(a, b) vec3(1.0f)
 #endif
 
 TYN_BEGIN
@@ -299,17 +300,22 @@ TYN_FUNC vec3 tyn_min_max_close(TynMinMaxLitSpan span, TynMinMaxRay ray) {
                                : span.integral;
 }
 
-// Coloured shafts (yusov2013 "Colored Light Shafts"): with a light-colour texture a long lit
-// section cannot be integrated in one step, the colour varies along it, so lit parts are merged
-// only within a chunk of `chunk` cells (a power of two) and each merged section is integrated on
-// its own, times the colour at its middle. With one cell per chunk that is yusov2013's fine step,
-// which a directional light's closed form needs (it takes one colour per section). A local light's
-// quadrature takes the colour at each node (TYN_MIN_MAX_COLOR is white then), so its chunk may
-// span a light-colour texel (tyn_min_max_colored_chunk). Both marches close sections at the same
-// chunk boundaries and gaps, so they still add the same terms.
+// Coloured shafts: with a light-colour texture a long lit section cannot be integrated in one
+// step times one colour, the colour varies along it (yusov2013 "Colored Light Shafts" walks lit
+// sections at the fine step for that reason). Here lit parts are merged only within a chunk of
+// `chunk` cells (a power of two) and each merged section is integrated on its own, times the
+// light's mean colour over it (TYN_MIN_MAX_COLOR_MEAN):
+//   - a directional light: its closed form, uncoloured, times the mean from light_color_sums.h's
+//     prefix sums, on chunks of EpipolarSettings::coloredStep cells capped by optical depth
+//     (tyn_min_max_directional_colored_chunk). The mean is exact for the colour; what a longer
+//     chunk loses is the covariance of the colour with the attenuation inside it.
+//   - a local light: a quadrature that takes the colour at every node (TYN_MIN_MAX_COLOR_MEAN is
+//     white then), on chunks of one colour texel (tyn_min_max_local_colored_chunk).
+// Both marches close sections at the same chunk boundaries and gaps, so they still add the same
+// terms.
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC vec3 tyn_min_max_colored_integral(TYN_MIN_MAX_ACCESS TynMinMaxRay ray, float a, float b) {
-  return TYN_MIN_MAX_COLOR(0.5f * (a + b)) * TYN_MIN_MAX_INTEGRATE(ray, a, b);
+  return TYN_MIN_MAX_COLOR_MEAN(a, b) * TYN_MIN_MAX_INTEGRATE(ray, a, b);
 }
 
 TYN_MIN_MAX_TEMPLATE
@@ -330,12 +336,30 @@ TYN_FUNC vec3 tyn_min_max_close_colored(TYN_MIN_MAX_ACCESS TynMinMaxLitSpan span
                                : span.integral;
 }
 
+// Most optical depth (σ_t · view distance, the largest channel's) one chunk of a coloured march
+// spans: a chunk's relative error is at most (max c − min c) · τ e^τ for a chunk of optical depth τ
+// (MinMaxMarch.ColoredChunkErrorWithinItsBound derives it), so in dense fog the chunks shorten
+// until the colour's covariance with the attenuation inside one stays within about a tenth.
+TYN_CONST float TYN_MIN_MAX_COLORED_OPTICAL_DEPTH = 0.1f;
+
+// The chunk of a directional light's coloured march along `ray`: `max_chunk` cells
+// (EpipolarSettings::coloredStep), or the largest power of two below it whose optical depth is at
+// most TYN_MIN_MAX_COLORED_OPTICAL_DEPTH (one cell at least). The same for both marches of one ray.
+TYN_FUNC int tyn_min_max_directional_colored_chunk(TynMinMaxRay ray, int max_chunk) {
+  float tau_per_cell = max(max(ray.sigma_t.x, ray.sigma_t.y), ray.sigma_t.z) * abs(ray.t_slope);
+  if (!(tau_per_cell * float(max_chunk) > TYN_MIN_MAX_COLORED_OPTICAL_DEPTH)) return max_chunk;
+  float cells = TYN_MIN_MAX_COLORED_OPTICAL_DEPTH / tau_per_cell;  // < max_chunk
+  return cells >= 1.0f ? 1 << findMSB(int(cells)) : 1;
+}
+
 // The chunk of a coloured local light's march, in cells: the largest power of two that spans at
 // most one light-colour texel along either axis (a cell spans at most one shadow-map texel along
 // either, tyn_min_max_sample_count), so that the colour, bilinear, bends at most once per axis
 // inside a chunk and the quadrature's four nodes follow it. Longer chunks were measured to lose
-// accuracy, shorter ones only time (docs/EPIPOLAR.md "Coloured shafts").
-TYN_FUNC int tyn_min_max_colored_chunk(int shadow_size, int color_size) {
+// accuracy, shorter ones only time (docs/EPIPOLAR.md "Coloured shafts"). The prefix sums'
+// mean colour does not serve a spot light: its integral from the table costs several of these
+// quadratures, and the mean's covariance error grows faster with the chunk (docs/EPIPOLAR.md).
+TYN_FUNC int tyn_min_max_local_colored_chunk(int shadow_size, int color_size) {
   return 1 << findMSB(max(shadow_size / max(color_size, 1), 1));
 }
 
@@ -537,7 +561,7 @@ TYN_END
 #undef TYN_MIN_MAX_SHADOW_TEXEL
 #undef TYN_MIN_MAX_SAMPLE
 #undef TYN_MIN_MAX_FETCH
-#undef TYN_MIN_MAX_COLOR
+#undef TYN_MIN_MAX_COLOR_MEAN
 #endif
 #undef TYN_MIN_MAX_TEMPLATE
 #undef TYN_MIN_MAX_ACCESS

@@ -131,6 +131,15 @@ struct EpipolarSettings {
   /// by the Reference's quadrature). A fixed-up pixel then reads N texels instead of one per texel
   /// its ray crosses (about the map's side); an occluder narrower than a step can be missed.
   std::uint32_t fixupSteps = 0;
+  /// With a light-colour texture (FrameDesc::lightColor) and a directional light: the march
+  /// integrates each lit section in chunks of at most this many 1D samples (about one shadow-map
+  /// texel each), each chunk uncoloured times the light's mean colour over it (prefix sums of the
+  /// colour along each slice, a pass of its own), and shorter where a chunk would span more than
+  /// 0.1 of optical depth. Exact for the colour; a longer chunk ignores more of how the colour and
+  /// the fog's attenuation vary together inside it, a shorter one costs more steps. A spot light's
+  /// chunks span one colour texel instead (their quadrature takes the colour at every node). A
+  /// power of two in 1..4096, default 32 (docs/EPIPOLAR.md, "Coloured shafts").
+  std::uint32_t coloredStep = 32;
 };
 
 /// A picture of how the technique sampled the frame, for people tuning it (tyndall-render

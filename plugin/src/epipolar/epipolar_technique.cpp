@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 
+#include "epipolar/light_color_sums.h"
 #include "epipolar/scattering_lut.h"
 #include "tyndall_shaders.h"
 
@@ -15,7 +16,7 @@ namespace {
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr VkFormat kShadowBlockFormat = VK_FORMAT_R32G32_SFLOAT;  // nearest, farthest depth
-constexpr std::uint32_t kBindings = 17;
+constexpr std::uint32_t kBindings = 18;
 // march.comp's and march_args.comp's TYN_MARCH_PARTS (constant_id 1 is the light-colour switch).
 constexpr std::uint32_t kMarchPartsConstantId = 2;
 // fixup.comp's and fixup_args.comp's TYN_FIXUP_SERIAL.
@@ -90,6 +91,9 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
     return invalid("epipolar.epipoleFixupHeightFraction must be in [0, 0.25]");
   }
   if (s.fixupSteps > gpu::TYN_EPIPOLAR_MAX_FIXUP_STEPS) return invalid("epipolar.fixupSteps must be in 0..256");
+  if (s.coloredStep < 1 || s.coloredStep > 4096 || (s.coloredStep & (s.coloredStep - 1)) != 0) {
+    return invalid("epipolar.coloredStep must be a power of two in 1..4096");
+  }
   return {};
 }
 
@@ -120,6 +124,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
       {14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
       {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
       {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
   const VkPushConstantRange push{stage, 0, sizeof(gpu::EpipolarConstants)};
   if (Outcome o = createLayouts(gpu, bindings, &push, setLayout_, pipelineLayout_); !o) return o;
@@ -127,7 +132,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 10},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 11},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 3},
   }};
   sets_.resize(slots);
@@ -150,12 +155,13 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
 
 Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (commonReady_) return {};
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 15> pipelines{{
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 16> pipelines{{
       {&slicePipeline_, shaders::slice_end_points_comp()},
       {&coordinatesPipeline_, shaders::coordinates_comp()},
       {&refinePipeline_, shaders::refine_comp()},
       {&sliceUvPipeline_, shaders::slice_uv_comp()},
       {&treePipeline_, shaders::min_max_tree_comp()},
+      {&colorSumsPipeline_, shaders::light_color_sums_comp()},
       {&shadowTestArgsPipeline_, shaders::shadow_test_args_comp()},
       {&shadowTestPipeline_, shaders::shadow_test_comp()},
       {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
@@ -230,6 +236,7 @@ Outcome EpipolarTechnique::createPipelines(const Gpu& gpu) {
 void EpipolarTechnique::destroyTextures(const Gpu& gpu, SampleTextures& textures) {
   destroyBuffer(gpu, textures.marchList);
   destroyImage(gpu, textures.tree);
+  destroyImage(gpu, textures.colorSums);
   destroyImage(gpu, textures.sliceUv);
   destroyImage(gpu, textures.interpolationSource);
   destroyImage(gpu, textures.scattering);
@@ -254,6 +261,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
+                              colorSumsPipeline_,
                               marchArgsPipeline_, shadowTestArgsPipeline_, shadowTestPipeline_, refineIntensityPipeline_,
                               interpolatePipeline_, unwarpPipeline_, fixupArgsPipelines_[0], fixupArgsPipelines_[1],
                               scatteringLutPipeline_, shadowBlocksPipeline_, debugBackgroundPipeline_,
@@ -268,8 +276,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 }
 
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                                   std::uint32_t shadowBlocks, VkExtent2D extent, std::uint64_t frameIndex,
-                                   std::uint32_t framesInFlight) {
+                                   std::uint32_t colorSamples, std::uint32_t shadowBlocks, VkExtent2D extent,
+                                   std::uint64_t frameIndex, std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
   // The fix-up list, at the first frame that runs the technique at this extent (a context that
   // only runs the Reference holds none).
@@ -289,7 +297,8 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   const std::uint32_t treeWidth = treeSamples > 1 ? treeSamples - 1 : 1;
   const std::uint32_t treeRows = treeSamples > 1 ? settings.slices : 1;
   auto fits = [&](const SampleTextures& t) {
-    return t.slices == settings.slices && t.samples == settings.samplesPerSlice && t.treeWidth == treeWidth;
+    return t.slices == settings.slices && t.samples == settings.samplesPerSlice && t.treeWidth == treeWidth &&
+           t.colorSamples == colorSamples;
   };
   if (!fits(textures_)) {
     if (textures_.slices != 0) {
@@ -309,6 +318,7 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   fresh.slices = settings.slices;
   fresh.samples = settings.samplesPerSlice;
   fresh.treeWidth = treeWidth;
+  fresh.colorSamples = colorSamples;
   Outcome outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.endPoints);
   if (outcome) {
     outcome = createImage(gpu, kSampleFormat, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
@@ -324,6 +334,14 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   }
   if (outcome) outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.sliceUv);
   if (outcome) outcome = createImage(gpu, VK_FORMAT_R32G32_SFLOAT, {treeWidth, treeRows}, kSampleUsage, fresh.tree);
+  if (outcome) {
+    const int samples = static_cast<int>(colorSamples);
+    const VkExtent2D sums =
+        colorSamples != 0 ? VkExtent2D{static_cast<std::uint32_t>(gpu::tyn_color_sums_width(samples)),
+                                       settings.slices * static_cast<std::uint32_t>(gpu::tyn_color_sums_rows(samples))}
+                          : VkExtent2D{1, 1};
+    outcome = createImage(gpu, kSampleFormat, sums, kSampleUsage, fresh.colorSums);
+  }
   if (outcome) {
     // Every sample at most once per round, and the refinement's entries once more when the shadow
     // test lists them again (epipolar_common.glsl's MarchList).
@@ -400,6 +418,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorImageInfo source{VK_NULL_HANDLE, textures_.interpolationSource.view, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo sliceUv{VK_NULL_HANDLE, textures_.sliceUv.view, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo tree{VK_NULL_HANDLE, textures_.tree.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo colorSums{VK_NULL_HANDLE, textures_.colorSums.view, VK_IMAGE_LAYOUT_GENERAL};
   const std::array<VkDescriptorImageInfo, 4> storage{{
       {VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL},
       {VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL},
@@ -435,6 +454,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const OwnedImage& blockImage = shadowBlocksUsed_ ? shadowBlocks_ : shadowBlocksPlaceholder_;
   const VkDescriptorImageInfo blocks{VK_NULL_HANDLE, blockImage.view, VK_IMAGE_LAYOUT_GENERAL};
   write(7, 7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &blocks;
+  write(16, 17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &colorSums;
   // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
   const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};
   std::uint32_t count = kBindings - 1;  // binding 14, the debug view, only when drawn
@@ -477,7 +497,8 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
 
   // The sample textures are rewritten every frame: earlier contents (and reads) are discarded.
   for (const OwnedImage* image : {&textures_.endPoints, &textures_.coordinates, &textures_.scattering,
-                                  &textures_.interpolationSource, &textures_.sliceUv, &textures_.tree}) {
+                                  &textures_.interpolationSource, &textures_.sliceUv, &textures_.tree,
+                                  &textures_.colorSums}) {
     imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
                  {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
   }
@@ -516,6 +537,10 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
          [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
     if (constants.tree.z != 0) {
       pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+    }
+    // With a light-colour texture, its sums along each line (the march's mean colours).
+    if (textures_.colorSamples != 0) {
+      pass("epipolar_light_color_sums", colorSumsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
     }
   }
   pass("epipolar_refine", refinePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });

@@ -46,15 +46,16 @@ class EpipolarTechnique {
   /// next prepare() creates it at that extent.
   void destroySizeDependent(const Gpu& gpu);
 
-  /// Makes the sample textures match `settings` and the tree texture hold `treeSamples` 1D
-  /// samples per slice (0: no tree is built this frame). Textures of other sizes are kept until no
+  /// Makes the sample textures match `settings`, the tree texture hold `treeSamples` 1D samples per
+  /// slice (0: no tree is built this frame) and the light-colour sums `colorSamples` (0: no
+  /// light-colour texture, or no slice lines this frame). Textures of other sizes are kept until no
   /// frame in flight can use them (frames in flight need no stall when the parameters change).
   /// `shadowBlocks`: blocks along each side of the fix-up's shadow-map block image (a directional
   /// light's map, shadowBlockCount), 0 when the frame needs none. `extent`: the output's, for the
   /// fix-up list, created by the first frame that runs the technique at that extent.
   Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                  std::uint32_t shadowBlocks, VkExtent2D extent, std::uint64_t frameIndex,
-                  std::uint32_t framesInFlight);
+                  std::uint32_t colorSamples, std::uint32_t shadowBlocks, VkExtent2D extent,
+                  std::uint64_t frameIndex, std::uint32_t framesInFlight);
 
   /// Records every pass; each is timed and appended to `passes`. The host inputs must already
   /// be readable by compute shaders and the targets writable (GENERAL).
@@ -85,10 +86,14 @@ class EpipolarTechnique {
     OwnedImage interpolationSource;  // samples × slices, R32_UINT
     OwnedImage sliceUv;      // slices × 1: line origin and direction in shadow-map UV
     OwnedImage tree;         // (L − 1) × slices, RG32F: one min/max tree per row; 1 × 1 when unused
+    // RGBA32F, the light-colour sums (light_color_sums.h's layout: L per slice, in rows of at most
+    // 4096); 1 × 1 when unused.
+    OwnedImage colorSums;
     MappedBuffer marchList;  // dispatch args, count, then up to slices × samples packed samples
     std::uint32_t slices = 0;
     std::uint32_t samples = 0;
     std::uint32_t treeWidth = 0;
+    std::uint32_t colorSamples = 0;
   };
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);
   Outcome prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
@@ -104,6 +109,7 @@ class EpipolarTechnique {
   VkPipeline refinePipeline_ = VK_NULL_HANDLE;
   VkPipeline sliceUvPipeline_ = VK_NULL_HANDLE;
   VkPipeline treePipeline_ = VK_NULL_HANDLE;
+  VkPipeline colorSumsPipeline_ = VK_NULL_HANDLE;
   VkPipeline marchArgsPipeline_ = VK_NULL_HANDLE;
   VkPipeline shadowTestArgsPipeline_ = VK_NULL_HANDLE;
   VkPipeline shadowTestPipeline_ = VK_NULL_HANDLE;

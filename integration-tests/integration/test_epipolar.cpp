@@ -371,14 +371,16 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarMarchParts,
                          ::testing::Values(MarchPartsCase{"pillars", true, 1e-5, 1e-4},
                                            MarchPartsCase{"forest", false, 1e-5, 1e-4},
                                            MarchPartsCase{"spot-lamp", true, 3e-4, 1e-2},
-                                           // Coloured: a section of one chunk (up to a colour texel)
-                                           // is integrated by one 4-node quadrature, which a bend of
-                                           // the bilinear colour inside it puts off by up to a few
-                                           // percent of that section; the parts cut some sections
-                                           // elsewhere. (Chunks against cell-by-cell sections,
-                                           // 640x360, default settings: 0.12% relative RMSE, the error
-                                           // against the Reference 3.403% against 3.406%.)
-                                           MarchPartsCase{"stained-glass", true, 1e-3, 5e-2}),
+                                           // Coloured: a section of one chunk (coloredStep cells) is
+                                           // integrated uncoloured times its mean colour, which the
+                                           // colour's covariance with the lamp's integrand inside it
+                                           // puts off; the parts cut some sections elsewhere, so they
+                                           // differ by that covariance (measured 0.24% relative RMSE,
+                                           // max 26% of the mean |L_in| at one pixel by the lamp, whose
+                                           // peak is ~1000 times the mean; chunks against the fine
+                                           // step: LightColorChunks). Against the Reference at 640x360
+                                           // every profile measures as before (docs/EPIPOLAR.md).
+                                           MarchPartsCase{"stained-glass", true, 4e-3, 0.4}),
                          [](const auto& test_param) {
                            std::string name = std::string(test_param.param.scene) + (test_param.param.tree ? "_tree" : "_plain");
                            for (char& c : name) c = c == '-' ? '_' : c;

@@ -105,17 +105,9 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
     const bool tree = settings.minMaxTree && samples <= static_cast<int>(gpu::TYN_EPIPOLAR_TREE_MAX_SAMPLES);
     const int topLevel = std::min(gpu::tyn_min_max_level_for_max_step(static_cast<int>(settings.maxTreeStep)),
                                   gpu::tyn_min_max_highest_level(samples));
-    // With a light-colour texture lit parts are integrated in chunks (min_max_tree.h,
-    // tyn_min_max_add_colored): a directional light's of coloredStep cells, each times its mean
-    // colour (light_color_sums.h); a spot light's quadrature takes the colour at every node, so its
-    // chunks span one colour texel.
-    const std::uint32_t coloredChunk =
-        frame.lightColor.empty() ? 0u
-        : light.type == LightType::Directional
-            ? settings.coloredStep
-            : static_cast<std::uint32_t>(gpu::tyn_min_max_local_colored_chunk(
-                  static_cast<int>(frame.shadowMaps[0].depth.extent.width),
-                  static_cast<int>(std::max(frame.lightColor.extent.width, frame.lightColor.extent.height))));
+    // With a light-colour texture lit parts are integrated in chunks of coloredStep cells, each
+    // uncoloured times its mean colour (min_max_tree.h, tyn_min_max_add_colored; light_color_sums.h).
+    const std::uint32_t coloredChunk = frame.lightColor.empty() ? 0u : settings.coloredStep;
     k.tree = glm::uvec4(static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(topLevel), tree ? 1u : 0u,
                         coloredChunk);
   }
@@ -459,9 +451,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     epipolarK = epipolarConstants(frame, epipolarSettings, extent, arc);
     note += epipolarMarchNote(epipolarK, epipolarSettings) + sliceArcNote(arc);
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
-    // The light-colour texture's sums along the slices' lines, for a directional light's march.
-    const std::uint32_t colorSamples =
-        epipolarK.tree.w != 0 && frame.light.type == LightType::Directional ? epipolarK.tree.x : 0;
+    // The light-colour texture's sums along the slices' lines, for the march along them.
+    const std::uint32_t colorSamples = epipolarK.tree.w != 0 ? epipolarK.tree.x : 0;
     // Only a frame whose fix-up walks texel by texel (not in steps) builds the blocks it walks.
     const std::uint32_t shadowBlocks = !frame.shadowMaps.empty() && epipolarSettings.fixupSteps == 0
                                            ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)

@@ -25,10 +25,10 @@ constexpr EpipolarSettings epipolarSettings(std::uint32_t slices, std::uint32_t 
 
 constexpr std::array<ProfileChoice, 5> kProfileTable{{
     {Profile::Reference, Technique::Reference, "profile table: Reference -> brute force", {}},
-    {Profile::High, Technique::Epipolar, "profile table: High -> epipolar, 512 slices x 256 samples",
+    {Profile::High, Technique::Epipolar, "profile table: High -> epipolar, 1024 slices x 512 samples",
+     epipolarSettings(1024, 512, 16, 0.15f)},
+    {Profile::Balanced, Technique::Epipolar, "profile table: Balanced -> epipolar, 512 slices x 256 samples",
      epipolarSettings(512, 256, 16, 0.15f)},
-    {Profile::Balanced, Technique::Epipolar, "profile table: Balanced -> epipolar, 256 slices x 256 samples",
-     epipolarSettings(256, 256, 16, 0.15f)},
     {Profile::Performance, Technique::Epipolar,
      "profile table: Performance -> epipolar, 128 slices x 128 samples, fix-up in 64 steps (the prefiltered technique "
      "misses its accuracy bars: not chosen)",
@@ -36,7 +36,7 @@ constexpr std::array<ProfileChoice, 5> kProfileTable{{
     // Never looked up for a frame: the context resolves Auto to one of the rows above
     // (auto_profile.h). Kept so that every Profile has a row.
     {Profile::Auto, Technique::Epipolar, "profile table: Auto -> Balanced's settings",
-     epipolarSettings(256, 256, 16, 0.15f)},
+     epipolarSettings(512, 256, 16, 0.15f)},
 }};
 
 }  // namespace

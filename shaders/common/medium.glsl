@@ -49,6 +49,9 @@ struct TynLocalLightRay {
   vec3 to_light;    // light position − origin
   vec4 clip;        // the origin in shadow map 0's clip space (the light-colour texture)
   vec4 clip_step;   // dir there (w component included: a spot's projection is perspective)
+  // Whether the integrand takes the light-colour texture at each node: with one bound, unless the
+  // caller multiplies the integral by a mean colour itself (the epipolar march's chunks).
+  bool colored;
 };
 
 TynLocalLightRay tyn_local_light_ray(vec3 origin, vec3 dir) {
@@ -57,6 +60,7 @@ TynLocalLightRay tyn_local_light_ray(vec3 origin, vec3 dir) {
   ray.to_light = frame.light_position.xyz - origin;
   ray.clip = frame.world_to_shadow[0] * vec4(origin, 1.0);
   ray.clip_step = frame.world_to_shadow[0] * vec4(dir, 0.0);
+  ray.colored = tyn_has_light_color();
   return ray;
 }
 
@@ -73,7 +77,7 @@ vec3 tyn_local_light_integrand(TynLocalLightRay ray, float t) {
                       : 1.0;
   // A light-colour texture filters the light at every quadrature node: next to a spot light the
   // integrand peaks within a texel, where one colour per segment would be off.
-  vec3 color = tyn_has_light_color() ? tyn_light_color_clip(ray.clip + t * ray.clip_step) : vec3(1.0);
+  vec3 color = ray.colored ? tyn_light_color_clip(ray.clip + t * ray.clip_step) : vec3(1.0);
   return frame.light_radiance.rgb * color * (falloff / d2) *
          tyn_phase_weighted_scattering(dot(ray.dir, omega_l)) * exp(-frame.extinction.rgb * (d + t));
 }

@@ -8,7 +8,7 @@
 // 0's UV square), the same for every ray of the slice. So it is summed once per slice (the pass
 // light_color_sums.comp) and the march integrates a lit section [a, b] as
 //     ∫ c(u) w(u) du ≈ c̄(a, b) · ∫ w(u) du,   c̄(a, b) = (1 / (b − a)) ∫_a^b c(u) du,
-// with w the uncoloured integrand (a directional light's closed form, a spot light's table): exact
+// with w the uncoloured integrand (a directional light's closed form, a spot light's quadrature): exact
 // for a constant colour, and otherwise off by the covariance of c and w over the section, which
 // grows with the section's length. The marches cut lit sections into chunks of
 // EpipolarSettings::coloredStep cells (min_max_tree.h, tyn_min_max_add_colored); docs/EPIPOLAR.md

@@ -5,11 +5,10 @@
 // integrated in one step, fully shadowed ones skipped and mixed ones descended; without it, every
 // cell is tested (the same lit set: the tree is exact). Lit sections of a directional light are
 // integrated in closed form; a spot light's from yusov2013's semi-analytic table. With a
-// light-colour texture lit sections are cut into chunks (min_max_tree.h, tyn_min_max_add_colored):
-// a directional light's of EpipolarSettings::coloredStep cells, each times the light's mean colour
-// over it from the slice's prefix sums (light_color_sums.h; yusov2013 "Colored Light Shafts" walks
-// them at the fine step instead); a spot light's of one colour texel, integrated by quadrature
-// with the colour at each node. Point lights
+// light-colour texture lit sections are cut into chunks of EpipolarSettings::coloredStep cells
+// (min_max_tree.h, tyn_min_max_add_colored), each integrated uncoloured times the light's mean
+// colour over it from the slice's prefix sums (light_color_sums.h; yusov2013 "Colored Light
+// Shafts" walks them at the fine step instead). Point lights
 // (six maps, no single line) and slices without a line in the map use the Reference's texel walk,
 // with its lit sections integrated from the same table (TYN_WALK_LIT_SECTIONS).
 #extension GL_GOOGLE_include_directive : require
@@ -50,9 +49,9 @@ float tyn_march_t_of_u(float u) {
 }
 
 // A spot light's lit section: from the semi-analytic table (inside the inner cone) and quadrature
-// (in the penumbra), yusov2013; with a light-colour texture the colour varies along the section, so
-// it is integrated by quadrature with the colour at every node instead, on chunks of at most one
-// colour texel (tyn_local_light_piece's `pairwise` says why pairwise).
+// (in the penumbra), yusov2013. A coloured light's chunks take the quadrature alone, uncoloured
+// (g_local_ray), which costs a fraction of the table's lookups on a chunk of a few tens of cells
+// (tyn_local_light_piece's `pairwise` says why pairwise; docs/EPIPOLAR.md "Coloured shafts").
 vec3 tyn_march_local_light(float u_a, float u_b) {
   float t_a = tyn_march_t_of_u(u_a);
   float t_b = tyn_march_t_of_u(u_b);
@@ -62,17 +61,12 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
   return frame.light_radiance.rgb * tyn_spot_segment(g_medium, g_light_ray, g_cone, a, b);
 }
 
-// A directional light's mean colour over [a, b] of the slice's line, from the slice's prefix sums;
-// a local light's quadrature takes the colour at each node (common/medium.glsl).
+// The light's mean colour over [a, b] of the slice's line, from the slice's prefix sums.
 #define TYN_COLOR_SUM(k) imageLoad(light_color_sums, tyn_color_sums_texel(int(epipolar.tree.x), g_slice, k)).rgb
 #include "epipolar/light_color_sums.h"
-vec3 tyn_march_light_color_mean(float a, float b) {
-  if (TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) return vec3(1.0);
-  return tyn_color_sums_mean(int(epipolar.tree.x), a, b);
-}
 
 #define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(texel)
-#define TYN_MIN_MAX_COLOR_MEAN(a, b) tyn_march_light_color_mean(a, b)
+#define TYN_MIN_MAX_COLOR_MEAN(a, b) tyn_color_sums_mean(int(epipolar.tree.x), a, b)
 #define TYN_MIN_MAX_SAMPLE(k) tyn_min_max_cell_sample(g_origin_texels, g_step_texels, k)
 #define TYN_MIN_MAX_FETCH(level, index) \
   imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree.x), level) + (index), g_slice)).xy
@@ -102,6 +96,7 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   }
   if (TYN_MARCH_LIGHT_COLOR && TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) {
     g_local_ray = tyn_local_light_ray(origin, dir);
+    g_local_ray.colored = false;  // the chunk's mean colour multiplies the quadrature
     g_cuts = tyn_local_light_cuts(origin, dir);
   }
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
@@ -118,11 +113,8 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
     // tyn_part_begin/end (reference_march.glsl): one part is exactly the whole range.
     float part_a = tyn_part_begin(range.x, range.y, part, TYN_MARCH_PARTS);
     float part_b = tyn_part_end(range.x, range.y, part, TYN_MARCH_PARTS);
-    // The host's chunk: coloredStep for a directional light (capped here by the ray's optical
-    // depth), one colour texel for a spot light.
-    int colored_chunk = !TYN_MARCH_LIGHT_COLOR ? 0
-                        : directional          ? tyn_min_max_directional_colored_chunk(sr.ray, int(epipolar.tree.w))
-                                               : int(epipolar.tree.w);
+    // coloredStep, capped by the ray's optical depth.
+    int colored_chunk = TYN_MARCH_LIGHT_COLOR ? tyn_min_max_colored_chunk(sr.ray, int(epipolar.tree.w)) : 0;
     TynMinMaxMarch march =
         epipolar.tree.z != 0u
             ? tyn_min_max_march_tree_range(sample_count, int(epipolar.tree.y), sr.ray, colored_chunk, part_a, part_b)

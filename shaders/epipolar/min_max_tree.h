@@ -303,16 +303,12 @@ TYN_FUNC vec3 tyn_min_max_close(TynMinMaxLitSpan span, TynMinMaxRay ray) {
 // Coloured shafts: with a light-colour texture a long lit section cannot be integrated in one
 // step times one colour, the colour varies along it (yusov2013 "Colored Light Shafts" walks lit
 // sections at the fine step for that reason). Here lit parts are merged only within a chunk of
-// `chunk` cells (a power of two) and each merged section is integrated on its own, times the
-// light's mean colour over it (TYN_MIN_MAX_COLOR_MEAN):
-//   - a directional light: its closed form, uncoloured, times the mean from light_color_sums.h's
-//     prefix sums, on chunks of EpipolarSettings::coloredStep cells capped by optical depth
-//     (tyn_min_max_directional_colored_chunk). The mean is exact for the colour; what a longer
-//     chunk loses is the covariance of the colour with the attenuation inside it.
-//   - a local light: a quadrature that takes the colour at every node (TYN_MIN_MAX_COLOR_MEAN is
-//     white then), on chunks of one colour texel (tyn_min_max_local_colored_chunk).
-// Both marches close sections at the same chunk boundaries and gaps, so they still add the same
-// terms.
+// `chunk` cells (a power of two, EpipolarSettings::coloredStep capped by tyn_min_max_colored_chunk)
+// and each merged section is integrated on its own, uncoloured (TYN_MIN_MAX_INTEGRATE), times the
+// light's mean colour over it (TYN_MIN_MAX_COLOR_MEAN, from light_color_sums.h's prefix sums). The
+// mean is exact for the colour; what a longer chunk loses is the covariance of the colour with the
+// integrand's own variation inside it (the attenuation, a spot light's fall-off). Both marches
+// close sections at the same chunk boundaries and gaps, so they still add the same terms.
 TYN_MIN_MAX_TEMPLATE
 TYN_FUNC vec3 tyn_min_max_colored_integral(TYN_MIN_MAX_ACCESS TynMinMaxRay ray, float a, float b) {
   return TYN_MIN_MAX_COLOR_MEAN(a, b) * TYN_MIN_MAX_INTEGRATE(ray, a, b);
@@ -342,25 +338,14 @@ TYN_FUNC vec3 tyn_min_max_close_colored(TYN_MIN_MAX_ACCESS TynMinMaxLitSpan span
 // until the colour's covariance with the attenuation inside one stays within about a tenth.
 TYN_CONST float TYN_MIN_MAX_COLORED_OPTICAL_DEPTH = 0.1f;
 
-// The chunk of a directional light's coloured march along `ray`: `max_chunk` cells
-// (EpipolarSettings::coloredStep), or the largest power of two below it whose optical depth is at
-// most TYN_MIN_MAX_COLORED_OPTICAL_DEPTH (one cell at least). The same for both marches of one ray.
-TYN_FUNC int tyn_min_max_directional_colored_chunk(TynMinMaxRay ray, int max_chunk) {
+// The chunk of a coloured march along `ray`: `max_chunk` cells (EpipolarSettings::coloredStep), or
+// the largest power of two below it whose optical depth, at the ray's mean dt/du, is at most
+// TYN_MIN_MAX_COLORED_OPTICAL_DEPTH (one cell at least). The same for both marches of one ray.
+TYN_FUNC int tyn_min_max_colored_chunk(TynMinMaxRay ray, int max_chunk) {
   float tau_per_cell = max(max(ray.sigma_t.x, ray.sigma_t.y), ray.sigma_t.z) * abs(ray.t_slope);
   if (!(tau_per_cell * float(max_chunk) > TYN_MIN_MAX_COLORED_OPTICAL_DEPTH)) return max_chunk;
   float cells = TYN_MIN_MAX_COLORED_OPTICAL_DEPTH / tau_per_cell;  // < max_chunk
   return cells >= 1.0f ? 1 << findMSB(int(cells)) : 1;
-}
-
-// The chunk of a coloured local light's march, in cells: the largest power of two that spans at
-// most one light-colour texel along either axis (a cell spans at most one shadow-map texel along
-// either, tyn_min_max_sample_count), so that the colour, bilinear, bends at most once per axis
-// inside a chunk and the quadrature's four nodes follow it. Longer chunks were measured to lose
-// accuracy, shorter ones only time (docs/EPIPOLAR.md "Coloured shafts"). The prefix sums'
-// mean colour does not serve a spot light: its integral from the table costs several of these
-// quadratures, and the mean's covariance error grows faster with the chunk (docs/EPIPOLAR.md).
-TYN_FUNC int tyn_min_max_local_colored_chunk(int shadow_size, int color_size) {
-  return 1 << findMSB(max(shadow_size / max(color_size, 1), 1));
 }
 
 // The part of the ray the marches cover: [u_begin, u_end] ∩ [0, L] as (a, b), a ≤ b.

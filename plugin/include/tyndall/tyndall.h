@@ -131,14 +131,13 @@ struct EpipolarSettings {
   /// by the Reference's quadrature). A fixed-up pixel then reads N texels instead of one per texel
   /// its ray crosses (about the map's side); an occluder narrower than a step can be missed.
   std::uint32_t fixupSteps = 0;
-  /// With a light-colour texture (FrameDesc::lightColor) and a directional light: the march
+  /// With a light-colour texture (FrameDesc::lightColor), directional and spot lights: the march
   /// integrates each lit section in chunks of at most this many 1D samples (about one shadow-map
   /// texel each), each chunk uncoloured times the light's mean colour over it (prefix sums of the
   /// colour along each slice, a pass of its own), and shorter where a chunk would span more than
   /// 0.1 of optical depth. Exact for the colour; a longer chunk ignores more of how the colour and
-  /// the fog's attenuation vary together inside it, a shorter one costs more steps. A spot light's
-  /// chunks span one colour texel instead (their quadrature takes the colour at every node). A
-  /// power of two in 1..4096, default 32 (docs/EPIPOLAR.md, "Coloured shafts").
+  /// the fog's attenuation (a spot light's fall-off) vary together inside it, a shorter one costs
+  /// more steps. A power of two in 1..4096, default 32 (docs/EPIPOLAR.md, "Coloured shafts").
   std::uint32_t coloredStep = 32;
 };
 
@@ -424,7 +423,7 @@ struct Stats {
   /// back buffer is left as it is) or one where nothing scatters (σ_s = 0 or the light off: L_in
   /// is cleared, pass "scattering_clear", and the back buffer attenuated).
   Technique technique = Technique::None;
-  /// Why that technique ran (e.g. "profile table: Balanced -> epipolar, 256 slices x 256 samples");
+  /// Why that technique ran (e.g. "profile table: Balanced -> epipolar, 512 slices x 256 samples");
   /// empty when nothing was recorded.
   std::string techniqueNote;
   /// Names of the passes recorded in the last `record` call, in order.

@@ -97,7 +97,7 @@ const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "
     "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row), "
-    "beta (adaptive|a number in [0, 1]), epipole-block";
+    "beta (adaptive|a number in [0, 1]), epipole-block, depth-bounds (0|1)";
 
 bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
   std::uint32_t value = 0;
@@ -170,6 +170,9 @@ bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out,
       parsed = s.adaptiveOverestimation || parseFloat(value, s.overestimation);
     } else if (key == "epipole-block") {
       parsed = parseUint(value, 0, 1u << 30, s.epipoleBlockPixels);
+    } else if (key == "depth-bounds") {
+      parsed = parseUint(value, 0, 1, u);
+      s.depthBounds = u != 0;
     } else {
       error = "--prefiltered: unknown key '" + key + "' (keys: " + kPrefilteredKeys + ")";
       return false;
@@ -217,6 +220,7 @@ std::string describe(const PrefilteredSettings& s) {
     append(out, "beta", floatText(s.overestimation));
   }
   if (s.epipoleBlockPixels != d.epipoleBlockPixels) append(out, "epipole-block", std::to_string(s.epipoleBlockPixels));
+  if (s.depthBounds != d.depthBounds) append(out, "depth-bounds", s.depthBounds ? "1" : "0");
   return out.empty() ? "defaults" : out;
 }
 

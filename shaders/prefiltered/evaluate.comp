@@ -117,8 +117,11 @@ void main() {
 
   vec3 to_light = -frame.light_direction.xyz;
   float beta = pf.bounds.x < 0.0 ? tyn_adaptive_overestimation(to_light, -ray.direction) : pf.bounds.x;
-  vec3 set_visibility = vec3(1.0);
-  for (uint set = 0u; set < pf.options.z; ++set) {
+  // Rays the row's occluders decide on their own (all in front, or none) skip the reconstruction:
+  // the row depth bounds (depth_bounds.h), the same for every prefix-sum set.
+  float verdict = tyn_pf_depth_bounds() ? tyn_pf_depth_bounds_verdict(uvd.x, v, depth_ray) : -1.0;
+  vec3 set_visibility = vec3(max(verdict, 0.0));
+  for (uint set = 0u; verdict < 0.0 && set < pf.options.z; ++set) {
     TynPfTaps taps;
     taps.v = v;
     taps.count = tap_count;

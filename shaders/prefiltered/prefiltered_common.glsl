@@ -6,6 +6,7 @@
 
 #include "common/shared_constants.h"
 #include "prefiltered/prefiltered_constants.h"
+#include "prefiltered/depth_bounds.h"
 
 layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; };
 layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
@@ -27,6 +28,11 @@ layout(set = 0, binding = 12) uniform sampler2DArray prefix_a;
 layout(set = 0, binding = 13) uniform sampler2DArray prefix_b;
 // bindings 14, 15: the prefix sums as storage images (storage_variants.glsl).
 layout(set = 0, binding = 16, std430) buffer FixupBlock { PrefilteredFixupArgs fixup_args; };
+// Row depth bounds (depth_bounds.h), RG16_UNORM: each rectified texel's smallest and largest
+// occluder depth (written by the rectification), and their running min and max along the row
+// (written by the prefix-sum pass, read by the evaluation). 1 × 1 placeholders when off.
+layout(set = 0, binding = 17, rg16) uniform image2D depth_bounds_texels;
+layout(set = 0, binding = 18, rg16) uniform image2D depth_bounds_prefix;
 
 #include "common/view_ray.glsl"
 
@@ -82,6 +88,18 @@ float tyn_pf_lookup_v(float v) {
   if (pf.map.w != 0u) return v;
   float half_texel = 0.5 / float(pf.map.y);
   return clamp(v, half_texel, 1.0 - half_texel);
+}
+
+// pf.bounds.y: the row depth bounds are built and read (PrefilteredSettings::depthBounds).
+bool tyn_pf_depth_bounds() { return pf.bounds.y != 0.0; }
+
+// The verdict of the row's occluders on a whole view ray ending at (u, v) with rectified depth
+// depth_ray: 0 in shadow, 1 lit, −1 for the reconstruction (depth_bounds.h).
+float tyn_pf_depth_bounds_verdict(float u, float v, float depth_ray) {
+  ivec3 t = tyn_depth_bounds_texels(u, v, int(pf.map.x), int(pf.map.y), pf.map.w != 0u);
+  vec2 bounds = tyn_depth_bounds_merge(imageLoad(depth_bounds_prefix, t.xy).xy,
+                                       imageLoad(depth_bounds_prefix, t.xz).xy);
+  return tyn_depth_bounds_verdict(bounds, depth_ray);
 }
 
 #endif

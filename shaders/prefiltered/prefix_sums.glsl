@@ -12,6 +12,8 @@
 //     many threads run; the reads are repeated, from the texture cache;
 //   - one thread per row (klehm2014 §3.3), 1 × TYN_PF_THREAD_PER_ROW_GROUP.
 // Both produce the same values bit for bit: every thread runs the same sequence of blends.
+// The first layer's workgroups also take the running min and max of the rectified texels' depth
+// bounds along the row (depth_bounds.h), with the same lanes and writes.
 // Included by prefix_sums_<variant>.comp after defining TYN_PF_BASIS.
 
 #include "prefiltered/prefiltered_common.glsl"
@@ -39,8 +41,11 @@ void main() {
 
   vec4 average = vec4(0.0);
   float weight_sum = 0.0;
+  bool bounds_layer = tyn_pf_depth_bounds() && gl_WorkGroupID.z == 0u;
+  vec2 running = tyn_depth_bounds_empty();
   for (uint base = 0u; base < columns; base += lanes) {
     vec4 mine = vec4(0.0);
+    vec2 mine_bounds = running;
     for (uint k = 0u; k < lanes; ++k) {
       uint i = base + k;
       if (i >= columns) break;
@@ -53,8 +58,15 @@ void main() {
       if (weight_sum > 0.0) {
         average = tyn_prefix_blend(average, tyn_pf_load_rectified(ivec2(i, row), slot), weight, weight_sum);
       }
-      if (k == lane) mine = average;
+      if (bounds_layer) running = tyn_depth_bounds_merge(running, imageLoad(depth_bounds_texels, ivec2(i, row)).xy);
+      if (k == lane) {
+        mine = average;
+        mine_bounds = running;
+      }
     }
-    if (base + lane < columns) tyn_pf_store_prefix(ivec2(base + lane, row), set, slot, mine);
+    if (base + lane < columns) {
+      tyn_pf_store_prefix(ivec2(base + lane, row), set, slot, mine);
+      if (bounds_layer) imageStore(depth_bounds_prefix, ivec2(base + lane, row), vec4(mine_bounds, 0.0, 0.0));
+    }
   }
 }

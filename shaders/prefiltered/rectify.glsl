@@ -5,7 +5,8 @@
 //   - plain: the host texel the light ray crosses (nearest), one depth;
 //   - filtered resampling (peters2017 §5.2): a bilinear sample of the moment shadow map, turned into
 //     two depths and weights by Algorithm 2 (tyn_two_depths_from_moments), each re-projected.
-// The texel then stores the representation of that distribution (storage_variants.glsl).
+// The texel then stores the representation of that distribution (storage_variants.glsl) and, with
+// the row depth bounds on, the smallest and largest of its depths (depth_bounds.h).
 // Included by rectify_<variant>.comp after defining TYN_PF_BASIS.
 
 #include "prefiltered/prefiltered_common.glsl"
@@ -31,6 +32,8 @@ void main() {
 
   vec2 depths = vec2(TYN_PF_NO_OCCLUDER);
   vec2 weights = vec2(1.0, 0.0);
+  // The row depth bounds' range of this texel: the depths its value is made of.
+  vec2 bounds = vec2(TYN_PF_NO_OCCLUDER);
   // Outside the host map's square there is no occluder information: lit (as the Reference).
   bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) &&
                 abs(depth_per_h) > 0.0;
@@ -45,13 +48,32 @@ void main() {
           depths[k] = tyn_pf_rectified_depth(radial, (host[k] - clip0.z) / depth_per_h);
         }
       }
+      if (tyn_pf_depth_bounds()) {
+        // The bilinear lookup mixes these 2 × 2 host texels (the moment map has one texel per
+        // host texel), so their depths bound the distribution it stands for. Not Algorithm 2's
+        // two depths: from 16-bit moments of one surface it returns a second depth of tiny
+        // weight anywhere the rounding puts it, which would make every row look mixed.
+        vec4 quad = textureGather(shadow_maps[0], uv, 0);
+        vec2 host_range = vec2(min(min(quad.x, quad.y), min(quad.z, quad.w)),
+                               max(max(quad.x, quad.y), max(quad.z, quad.w)));
+        bounds = tyn_depth_bounds_empty();
+        for (int k = 0; k < 2; ++k) {
+          float d = host_range[k] < 1.0 ? tyn_pf_rectified_depth(radial, (host_range[k] - clip0.z) / depth_per_h)
+                                        : TYN_PF_NO_OCCLUDER;
+          bounds = tyn_depth_bounds_merge(bounds, vec2(d));
+        }
+      }
     } else {
       int size = int(pf.options.w);
       ivec2 host_texel = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
       float host = texelFetch(shadow_maps[0], host_texel, 0).r;
       // A texel at the clear value (1) has no occluder (as in the Reference's walk).
       if (host < 1.0) depths.x = tyn_pf_rectified_depth(radial, (host - clip0.z) / depth_per_h);
+      bounds = depths.xx;
     }
+  }
+  if (tyn_pf_depth_bounds()) {
+    imageStore(depth_bounds_texels, ivec2(texel), vec4(tyn_depth_bounds_quantize(bounds), 0.0, 0.0));
   }
   for (uint slot = 0u; slot < TYN_PF_SLOTS; ++slot) {
     tyn_pf_store_rectified(ivec2(texel), slot, tyn_pf_slot(slot, depths, weights));

@@ -222,6 +222,11 @@ struct PrefilteredSettings {
   /// shafts converge when it is behind the camera) that is ray-marched per pixel with the
   /// Reference's walk instead (klehm2014 Fig. 8). 0..256, default 16; 0 turns the block off.
   std::uint32_t epipoleBlockPixels = 16;
+  /// Row depth bounds: the running min and max of the occluder depths along each rectified row
+  /// (RG16_UNORM, 4 bytes per texel, two maps), so that a view ray whose row holds only occluders
+  /// in front of it (or none) gets visibility 0 (or 1) exactly instead of the reconstruction, whose
+  /// bounds leave doubt there (a closed room's roof over every ray; docs/PREFILTERED.md). Default true.
+  bool depthBounds = true;
 };
 
 const char* to_string(Profile profile) noexcept;

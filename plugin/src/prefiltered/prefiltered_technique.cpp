@@ -28,12 +28,14 @@ static_assert(sizeof(gpu::PrefilteredFixupArgs) == 32);
 
 namespace {
 
-constexpr std::uint32_t kBindings = 17;
+constexpr std::uint32_t kBindings = 19;
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 constexpr VkImageUsageFlags kMapUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 // The moment shadow map of the filtered resampling: Θ4* in 16-bit UNORM (peters2017 D.1), which
 // every Vulkan device can filter linearly.
 constexpr VkFormat kMomentMapFormat = VK_FORMAT_R16G16B16A16_UNORM;
+// The row depth bounds (shaders/prefiltered/depth_bounds.h): min and max, rounded outwards to 16 bits.
+constexpr VkFormat kDepthBoundsFormat = VK_FORMAT_R16G16_UNORM;
 
 // The storage variants' images, as shaders/prefiltered/storage_variants.glsl declares them.
 struct Storage {
@@ -138,6 +140,7 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
     if (usable(gpu, s.a) && (s.b == VK_FORMAT_UNDEFINED || usable(gpu, s.b))) supportedVariants_ |= 1u << i;
   }
   momentMapSupported_ = usable(gpu, kMomentMapFormat);
+  depthBoundsSupported_ = (gpu.optimalFeatures(kDepthBoundsFormat) & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
 
   const std::array<VkSampler, kMaxShadowMaps> nearestSamplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -161,13 +164,15 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
       {14, storage, 1, stage, nullptr},
       {15, storage, 1, stage, nullptr},
       {16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {17, storage, 1, stage, nullptr},
+      {18, storage, 1, stage, nullptr},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps + 6},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 6},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
   }};
   sets_.resize(slots);
@@ -184,6 +189,8 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
 }
 
 void PrefilteredTechnique::destroyMaps(const Gpu& gpu, Maps& maps) {
+  destroyImage(gpu, maps.depthBoundsPrefix);
+  destroyImage(gpu, maps.depthBoundsTexels);
   destroyImage(gpu, maps.prefixB);
   destroyImage(gpu, maps.prefixA);
   destroyImage(gpu, maps.rectifiedB);
@@ -243,9 +250,9 @@ void PrefilteredTechnique::destroy(const Gpu& gpu) {
 
 Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, std::uint32_t columns,
                                          std::uint32_t rows, std::uint32_t sets, std::uint32_t momentMapSize,
-                                         std::uint64_t frameIndex) {
+                                         bool depthBounds, std::uint64_t frameIndex) {
   if (maps_.basis == basis && maps_.columns == columns && maps_.rows == rows && maps_.sets == sets &&
-      maps_.momentMapSize == momentMapSize) {
+      maps_.momentMapSize == momentMapSize && maps_.depthBounds == depthBounds) {
     return {};
   }
   // Frames still in flight may use the old maps: they are destroyed once those have completed.
@@ -260,13 +267,18 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, st
   fresh.rows = rows;
   fresh.sets = sets;
   fresh.momentMapSize = momentMapSize;
+  fresh.depthBounds = depthBounds;
   const VkExtent2D extent{columns, rows};
+  const VkExtent2D boundsExtent = depthBounds ? extent : VkExtent2D{1, 1};
   Outcome outcome = createImage(gpu, kMomentMapFormat, {momentMapSize, momentMapSize}, kMapUsage, fresh.momentMap);
   if (outcome) outcome = createImageArray(gpu, s.a, extent, s.layersA, kMapUsage, fresh.rectifiedA);
   if (outcome) outcome = createImageArray(gpu, s.a, extent, s.layersA * sets, kMapUsage, fresh.prefixA);
   if (outcome && s.b != VK_FORMAT_UNDEFINED) {
     outcome = createImageArray(gpu, s.b, extent, 1, kMapUsage, fresh.rectifiedB);
     if (outcome) outcome = createImageArray(gpu, s.b, extent, sets, kMapUsage, fresh.prefixB);
+  }
+  for (OwnedImage* bounds : {&fresh.depthBoundsTexels, &fresh.depthBoundsPrefix}) {
+    if (outcome) outcome = createImage(gpu, kDepthBoundsFormat, boundsExtent, VK_IMAGE_USAGE_STORAGE_BIT, *bounds);
   }
   if (!outcome) {
     destroyMaps(gpu, fresh);
@@ -290,6 +302,9 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   if (settings.filteredResampling && !momentMapSupported_) {
     return failure(Status::UnsupportedFeature,
                    "prefiltered.filteredResampling: the device cannot store and filter R16G16B16A16_UNORM");
+  }
+  if (settings.depthBounds && !depthBoundsSupported_) {
+    return failure(Status::UnsupportedFeature, "prefiltered.depthBounds: the device cannot store R16G16_UNORM");
   }
 
   // Rectification (double precision on the CPU, rectification_setup.h).
@@ -374,10 +389,11 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   k.map = glm::uvec4(settings.columns, settings.rows, projective ? 1u : 0u, !projective && rect.fullCircle ? 1u : 0u);
   k.options = glm::uvec4(settings.filteredResampling ? 1u : 0u, static_cast<std::uint32_t>(settings.spacing), sets, mapSize);
   k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, 0u, 0u);
-  k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation, 0.0f, 0.0f, 0.0f);
+  k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation,
+                       settings.depthBounds ? 1.0f : 0.0f, 0.0f, 0.0f);
 
   if (Outcome o = ensureMaps(gpu, basis, settings.columns, settings.rows, sets,
-                             settings.filteredResampling ? mapSize : 1u, frameIndex);
+                             settings.filteredResampling ? mapSize : 1u, settings.depthBounds, frameIndex);
       !o) {
     return o;
   }
@@ -391,6 +407,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   note += std::string("; ") + storage.name + ", " + std::to_string(settings.rows) + " rows x " +
           std::to_string(settings.columns) + " columns, " + rectNote + ", " + extinctionNote +
           (settings.filteredResampling ? ", filtered resampling" : ", nearest resampling") +
+          (settings.depthBounds ? ", row depth bounds" : "") +
           (blockOnScreen ? ", epipole block " + std::to_string(settings.epipoleBlockPixels) + " px ray-marched" : "");
   return {};
 }
@@ -413,6 +430,8 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   const VkDescriptorImageInfo rectB = general(maps_.rectifiedB, maps_.rectifiedA);
   const VkDescriptorImageInfo prefixA = general(maps_.prefixA, maps_.prefixA);
   const VkDescriptorImageInfo prefixB = general(maps_.prefixB, maps_.prefixA);
+  const VkDescriptorImageInfo boundsTexels = general(maps_.depthBoundsTexels, maps_.depthBoundsTexels);
+  const VkDescriptorImageInfo boundsPrefix = general(maps_.depthBoundsPrefix, maps_.depthBoundsPrefix);
 
   std::array<VkWriteDescriptorSet, kBindings> writes{};
   auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
@@ -438,6 +457,8 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   write(14, storage, 1).pImageInfo = &prefixA;
   write(15, storage, 1).pImageInfo = &prefixB;
   write(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
+  write(17, storage, 1).pImageInfo = &boundsTexels;
+  write(18, storage, 1).pImageInfo = &boundsPrefix;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
 }
 
@@ -461,7 +482,8 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
 
   // Every map is bound (the evaluation's descriptors name the prefix sums even when it skips
   // them), so every map is in GENERAL.
-  discardToGeneral(gpu, cmd, {&maps_.momentMap, &maps_.rectifiedA, &maps_.rectifiedB, &maps_.prefixA, &maps_.prefixB});
+  discardToGeneral(gpu, cmd, {&maps_.momentMap, &maps_.rectifiedA, &maps_.rectifiedB, &maps_.prefixA, &maps_.prefixB,
+                              &maps_.depthBoundsTexels, &maps_.depthBoundsPrefix});
   if (plan_.filtered) {
     const std::uint32_t size = maps_.momentMapSize;
     pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {

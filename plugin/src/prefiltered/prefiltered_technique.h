@@ -58,14 +58,17 @@ class PrefilteredTechnique {
     OwnedImage rectifiedB;  // columns × rows, image B of the two-image variants
     OwnedImage prefixA;     // columns × rows, layers of A × prefix-sum sets
     OwnedImage prefixB;
+    OwnedImage depthBoundsTexels;  // columns × rows (RG16_UNORM), 1 × 1 without the row depth bounds
+    OwnedImage depthBoundsPrefix;
     std::uint32_t basis = ~0u;
     std::uint32_t columns = 0;
     std::uint32_t rows = 0;
     std::uint32_t sets = 0;
     std::uint32_t momentMapSize = 0;
+    bool depthBounds = false;
   };
   Outcome ensureMaps(const Gpu& gpu, std::uint32_t basis, std::uint32_t columns, std::uint32_t rows,
-                     std::uint32_t sets, std::uint32_t momentMapSize, std::uint64_t frameIndex);
+                     std::uint32_t sets, std::uint32_t momentMapSize, bool depthBounds, std::uint64_t frameIndex);
   void destroyMaps(const Gpu& gpu, Maps& maps);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
 
@@ -82,6 +85,7 @@ class PrefilteredTechnique {
   VkPipeline fixupPipeline_ = VK_NULL_HANDLE;
   std::uint32_t supportedVariants_ = 0;  // bit per storage variant whose formats the device has
   bool momentMapSupported_ = false;
+  bool depthBoundsSupported_ = false;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
   std::vector<MappedBuffer> constants_;  // per slot: PrefilteredConstants

@@ -1,0 +1,127 @@
+// The row depth bounds of the prefiltered technique (shaders/prefiltered/depth_bounds.h, compiled
+// as C++ from the shader's source): outward 16-bit rounding, the verdict of a whole ray against
+// brute force over the row's occluder depths in double precision, and the texels a lookup covers
+// against the bilinear footprint of the prefix-sum lookup it stands beside.
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "prefiltered/depth_bounds.h"
+#include "prefiltered/rectification.h"
+
+namespace {
+
+using namespace tyndall::gpu;
+
+// What a UNORM16 channel returns for a stored float (Vulkan: round to nearest).
+float throughUnorm16(float x) { return std::round(std::clamp(x, 0.0f, 1.0f) * 65535.0f) / 65535.0f; }
+
+TEST(DepthBounds, QuantizationRoundsOutwardsToStoredValues) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> values{0.0f, 1.0f, 0.5f, 1.0f / 65535.0f, 1.0f - 1.0f / 65535.0f};
+  for (int i = 0; i < 100000; ++i) values.push_back(unit(rng));
+  for (int k = 1; k < 65535; k += 97) values.push_back(static_cast<float>(k) / 65535.0f);  // on a step
+  for (float x : values) {
+    const vec2 q = tyn_depth_bounds_quantize(vec2(x, x));
+    ASSERT_LE(static_cast<double>(q.x), static_cast<double>(x)) << x;
+    ASSERT_GE(static_cast<double>(q.y), static_cast<double>(x)) << x;
+    // Exactly what the channel stores, and no more than two steps apart.
+    ASSERT_EQ(throughUnorm16(q.x), q.x) << x;
+    ASSERT_EQ(throughUnorm16(q.y), q.y) << x;
+    ASSERT_LE(q.y - q.x, 2.0f / 65535.0f + 1e-7f) << x;
+  }
+}
+
+// Rows of random texels, each with one or two occluder depths (some rows all near, all far, or
+// clear); for rays ending anywhere along the row at random depths the verdict must agree with
+// every depth the ray's texels hold, and must be given whenever the depths leave no doubt by more
+// than the rounding.
+TEST(DepthBounds, VerdictMatchesEveryOccluderOfTheRay) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  constexpr int kColumns = 64;
+  int verdicts[3] = {0, 0, 0};
+  for (int row = 0; row < 400; ++row) {
+    const int kind = row % 4;  // 0: mixed, 1: all in [0, 0.4], 2: all in [0.6, 1], 3: clear (1)
+    std::vector<std::vector<double>> depths(kColumns);
+    for (auto& texel : depths) {
+      const int count = 1 + static_cast<int>(unit(rng) * 2.0);
+      for (int i = 0; i < count; ++i) {
+        const double d = kind == 0 ? unit(rng) : kind == 1 ? 0.4 * unit(rng) : kind == 2 ? 0.6 + 0.4 * unit(rng) : 1.0;
+        texel.push_back(d);
+      }
+    }
+    // As the passes build them: each texel's range rounded outwards, then the running merge.
+    std::vector<vec2> prefix(kColumns);
+    vec2 running = tyn_depth_bounds_empty();
+    for (int c = 0; c < kColumns; ++c) {
+      vec2 texel = tyn_depth_bounds_empty();
+      for (double d : depths[c]) texel = tyn_depth_bounds_merge(texel, vec2(static_cast<float>(d)));
+      running = tyn_depth_bounds_merge(running, tyn_depth_bounds_quantize(texel));
+      prefix[c] = running;
+    }
+    for (int ray = 0; ray < 50; ++ray) {
+      const int end = static_cast<int>(unit(rng) * kColumns);
+      const float depthRay = static_cast<float>(unit(rng));
+      double lo = 1.0;
+      double hi = 0.0;
+      for (int c = 0; c <= end; ++c) {
+        for (double d : depths[c]) {
+          lo = std::min(lo, d);
+          hi = std::max(hi, d);
+        }
+      }
+      const float verdict = tyn_depth_bounds_verdict(prefix[end], depthRay);
+      if (verdict == 0.0f) {
+        ASSERT_LT(hi, depthRay) << "a ray in shadow has an occluder behind it";
+        ++verdicts[0];
+      } else if (verdict == 1.0f) {
+        ASSERT_GE(lo, depthRay) << "a lit ray has an occluder in front of it";
+        ++verdicts[1];
+      } else {
+        ASSERT_EQ(verdict, -1.0f);
+        // Doubt only within the rounding of the bounds.
+        const double step = 2.0 / 65535.0;
+        ASSERT_FALSE(hi < depthRay - step) << "every occluder in front, yet no verdict";
+        ASSERT_FALSE(lo >= depthRay + step) << "no occluder in front, yet no verdict";
+        ++verdicts[2];
+      }
+    }
+  }
+  // Each outcome occurred often enough for the checks above to mean something.
+  for (int count : verdicts) EXPECT_GT(count, 1000);
+}
+
+// The bilinear lookup of the prefix sums at tyn_prefix_lookup_u(u) reads columns i0 and i0 + 1
+// (clamped) and rows j0, j0 + 1 (wrapped or clamped); the bounds must be read at the later column,
+// whose prefix holds both, and at both rows.
+TEST(DepthBounds, TexelsCoverTheBilinearLookup) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int columns : {16, 1024, 4096}) {
+    for (int rows : {16, 1000}) {
+      for (bool wrap : {false, true}) {
+        for (int i = 0; i < 2000; ++i) {
+          const float u = unit(rng);
+          const float v = unit(rng);
+          const ivec3 t = tyn_depth_bounds_texels(u, v, columns, rows, wrap);
+          const float x = tyn_prefix_lookup_u(u, static_cast<float>(columns)) * static_cast<float>(columns) - 0.5f;
+          const int i0 = static_cast<int>(std::floor(x));
+          const int i1 = std::clamp(i0 + 1, 0, columns - 1);
+          ASSERT_EQ(t.x, std::max(std::clamp(i0, 0, columns - 1), i1)) << u;
+          ASSERT_LE(static_cast<float>(t.x) / static_cast<float>(columns), u) << "the column starts after the ray's end";
+          const int j0 = static_cast<int>(std::floor(v * static_cast<float>(rows) - 0.5f));
+          const auto place = [&](int j) { return wrap ? (j % rows + rows) % rows : std::clamp(j, 0, rows - 1); };
+          ASSERT_EQ(t.y, place(j0)) << v;
+          ASSERT_EQ(t.z, place(j0 + 1)) << v;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace

@@ -9,8 +9,8 @@
 // ray is entirely in shadow, and the row says so: every occluder depth up to the ray's end is
 // smaller than z_r. The same holds the other way for a ray with nothing in front of it.
 //
-// So the rectification also writes each texel's smallest and largest occluder depth (those with a
-// positive weight), the prefix-sum pass their running minimum and maximum along the row, and the
+// So the rectification also writes each texel's smallest and largest occluder depth (of the host
+// texels its lookup mixes: rectify.glsl), the prefix-sum pass their running minimum and maximum along the row, and the
 // evaluation takes, over the texels its bilinear lookup at the ray's end reads:
 //   max < z_r  → the whole ray is in shadow: visibility 0, exactly what the representation holds;
 //   min ≥ z_r  → nothing is in front anywhere: visibility 1;

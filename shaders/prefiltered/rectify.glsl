@@ -6,7 +6,7 @@
 //   - filtered resampling (peters2017 §5.2): a bilinear sample of the moment shadow map, turned into
 //     two depths and weights by Algorithm 2 (tyn_two_depths_from_moments), each re-projected.
 // The texel then stores the representation of that distribution (storage_variants.glsl) and, with
-// the row depth bounds on, the smallest and largest of its depths (depth_bounds.h).
+// the row depth bounds on, the range of the host depths it was made from (depth_bounds.h).
 // Included by rectify_<variant>.comp after defining TYN_PF_BASIS.
 
 #include "prefiltered/prefiltered_common.glsl"

@@ -47,7 +47,7 @@ TEST(SettingsText, EveryPrefilteredFieldRoundTrips) {
   PrefilteredSettings s;
   s.basis = PrefilteredBasis::Fourier32;
   s.rectification = PrefilteredRectification::Projective;
-  s.rows = 512;
+  s.rows = 256;
   s.columns = 256;
   s.filteredResampling = false;
   s.spacing = PrefilteredSpacing::MeanTheta;
@@ -56,10 +56,11 @@ TEST(SettingsText, EveryPrefilteredFieldRoundTrips) {
   s.overestimation = 0.25f;
   s.epipoleBlockPixels = 0;
   s.depthBounds = false;
+  s.segmentedReconstruction = false;
   const std::string text = describe(s);
   EXPECT_EQ(text,
-            "basis=fourier32,rectification=projective,rows=512,columns=256,filtered=0,spacing=mean-theta,taps=1,"
-            "prefix-sums=thread-per-row,beta=0.25,epipole-block=0,depth-bounds=0");
+            "basis=fourier32,rectification=projective,rows=256,columns=256,filtered=0,spacing=mean-theta,taps=1,"
+            "prefix-sums=thread-per-row,beta=0.25,epipole-block=0,depth-bounds=0,segments=0");
   PrefilteredSettings back;
   std::string error;
   ASSERT_TRUE(parsePrefilteredSettings(text, back, error)) << error;

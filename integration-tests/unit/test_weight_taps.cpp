@@ -186,6 +186,54 @@ TEST(WeightTaps, ConvergeToTheRaysWeightedAverage) {
   EXPECT_LT(meanError[3], meanError[2]);
 }
 
+// Segmented reconstruction: the difference of two lookups with tyn_segment_coefficients is the
+// reference-weighted average of the segment between them alone (double-precision quadrature of
+// random visibilities), and the K segments' mean is the combined lookup Σ c_k A(τ_k): the same linear
+// average, so segmenting changes only where the non-linear reconstruction runs.
+TEST(WeightTaps, SegmentsAreTheirOwnAveragesAndAverageToTheCombinedLookup) {
+  EXPECT_EQ(tyn_segment_coefficients(0.0f, 3.0f), vec2(1.0f, 0.0f)) << "the first segment is a lookup";
+  EXPECT_EQ(tyn_segment_coefficients(3.0f, 3.0f), vec2(1.0f, 0.0f)) << "a segment of no weight";
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double worstSegment = 0.0, worstMean = 0.0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double sigma = std::pow(10.0, -3.0 + 3.0 * unit(rng));
+    const double kappa = std::pow(10.0, 2.0 * unit(rng));
+    const double tauEnd = std::pow(10.0, 0.0 + 2.5 * unit(rng));
+    const int taps = 2 + static_cast<int>(unit(rng) * 7.0);
+    Visibility v;
+    v.litFirst = unit(rng) < 0.5;
+    const int steps = static_cast<int>(unit(rng) * 6.0);
+    for (int i = 0; i < steps; ++i) v.edges.push_back(unit(rng) * tauEnd);
+    std::sort(v.edges.begin(), v.edges.end());
+    double combined = 0.0, segmented = 0.0, lo = 0.0, previousAverage = 0.0;
+    float previousWeight = 0.0f;
+    for (int k = 1; k <= taps; ++k) {
+      const vec2 tap = tyn_weight_tap(float(sigma), float(kappa), float(tauEnd), std::uint32_t(k), std::uint32_t(taps));
+      const double tau = tap.x * tauEnd;
+      const double average = prefixAverage(v, sigma, tau);
+      combined += tap.y * average;
+      const float weight = tyn_prefix_weight(float(sigma), float(tau));
+      const vec2 c = tyn_segment_coefficients(previousWeight, weight);
+      EXPECT_NEAR(double(c.x) + double(c.y), 1.0, 1e-6 * c.x) << "the rounding of w_hi / (w_hi - w_lo) only";
+      const double segment = c.x * average + c.y * previousAverage;
+      segmented += segment / taps;
+      if (tau > lo) {
+        const double truth = v.weighted(sigma, lo, tau) / expIntegral(sigma, lo, tau);
+        worstSegment = std::max(worstSegment, std::abs(segment - truth));
+      }
+      lo = tau;
+      previousAverage = average;
+      previousWeight = weight;
+    }
+    worstMean = std::max(worstMean, std::abs(segmented - combined));
+  }
+  std::printf("[ WeightTaps ] segments: worst |segment - its exact average| %.1e, |mean - combined| %.1e\n",
+              worstSegment, worstMean);
+  EXPECT_LT(worstSegment, 1e-3);
+  EXPECT_LT(worstMean, 1e-4);
+}
+
 // A tap at reference distance τ = t / κ reads the texel where the ray is at distance t: for both
 // rectifications, the tap coordinates of the ray's own distance are its end's texture coordinate
 // (tyn_rectified_texcoord, tyn_projective_texcoord_from_offset), for any reference no slower than

@@ -7,8 +7,9 @@
 //     and a cubic for 6), between them by β: the adaptive overestimation (§5.3.1) or a constant;
 //   - Fourier: the clamped series ½ + Σ a_k(z_r) B̄_k (klehm2014 Eq. 9, Appendix A).
 // With rayWeightTaps > 1 the lookup is K lookups along the row whose combination re-weights the
-// row's prefix sums to the pixel's own ray (weight_taps.h); the reconstruction runs once, on the
-// combined representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
+// row's prefix sums to the pixel's own ray (weight_taps.h). Segmented reconstruction (the default)
+// reconstructs each of the K segments between the taps from the difference of two lookups and
+// averages the K visibilities; otherwise the reconstruction runs once, on the combined representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
 // The storage variant is a specialisation constant: this pass only samples, so it needs no format qualifier.
 #extension GL_GOOGLE_include_directive : require
 
@@ -121,30 +122,63 @@ void main() {
   // the row depth bounds (depth_bounds.h), the same for every prefix-sum set.
   float verdict = tyn_pf_depth_bounds() ? tyn_pf_depth_bounds_verdict(uvd.x, v, depth_ray) : -1.0;
   vec3 set_visibility = vec3(max(verdict, 0.0));
+  bool segmented = pf.fixup.z != 0u;
   for (uint set = 0u; verdict < 0.0 && set < pf.options.z; ++set) {
     TynPfTaps taps;
     taps.v = v;
-    taps.count = tap_count;
     if (tap_count <= 1u) {
+      taps.count = 1u;
       taps.u[0] = tyn_prefix_lookup_u(uvd.x, columns);
       taps.c[0] = 1.0;
-    } else {
-      float sum = 0.0;
-      for (uint k = 0u; k < tap_count; ++k) {
-        vec2 tap = tyn_weight_tap(pf.set_extinction[set], kappa, tau_end, k + 1u, tap_count);
-        // The last tap is the ray's end itself, where the single lookup reads.
-        float tau = tap.x * tau_end;
-        float u = k + 1u == tap_count ? uvd.x
-                  : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
-                                        : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
-        taps.u[k] = tyn_prefix_lookup_u(u, columns);
-        taps.c[k] = tap.y;
-        sum += tap.y;
-      }
-      // Σ c = 1 in exact arithmetic; the rounding that tyn_weight_tap clamps is renormalised.
-      for (uint k = 0u; k < tap_count; ++k) taps.c[k] /= max(sum, 1.0e-30);
+      set_visibility[set] = tyn_pf_visibility(set, taps, depth_ray, beta);
+      continue;
     }
-    set_visibility[set] = tyn_pf_visibility(set, taps, depth_ray, beta);
+    // The K taps: where each reads (u, before the half-texel shift), the reference's weight up to
+    // it, and its coefficient in the combined lookup.
+    float sigma = pf.set_extinction[set];
+    float tap_u[TYN_PF_MAX_TAPS];
+    float tap_w[TYN_PF_MAX_TAPS];
+    float sum = 0.0;
+    for (uint k = 0u; k < tap_count; ++k) {
+      vec2 tap = tyn_weight_tap(sigma, kappa, tau_end, k + 1u, tap_count);
+      // The last tap is the ray's end itself, where the single lookup reads.
+      float tau = tap.x * tau_end;
+      tap_u[k] = k + 1u == tap_count ? uvd.x
+                 : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
+                                       : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
+      tap_w[k] = tyn_prefix_weight(sigma, tau);
+      taps.u[k] = tyn_prefix_lookup_u(tap_u[k], columns);
+      taps.c[k] = tap.y;
+      sum += tap.y;
+    }
+    if (!segmented) {
+      // Σ c = 1 in exact arithmetic; the rounding that tyn_weight_tap clamps is renormalised.
+      taps.count = tap_count;
+      for (uint k = 0u; k < tap_count; ++k) taps.c[k] /= max(sum, 1.0e-30);
+      set_visibility[set] = tyn_pf_visibility(set, taps, depth_ray, beta);
+      continue;
+    }
+    // Segmented: each segment holds 1/K of the ray's weight and is reconstructed on its own
+    // (tyn_segment_coefficients). Its occluders are the row's between two taps, so the prefix's
+    // depth bounds at its end decide it when they can, whatever the segments after it hold.
+    float visible = 0.0;
+    for (uint k = 0u; k < tap_count; ++k) {
+      float segment_verdict = tyn_pf_depth_bounds() ? tyn_pf_depth_bounds_verdict(tap_u[k], v, depth_ray) : -1.0;
+      if (segment_verdict >= 0.0) {
+        visible += segment_verdict;
+        continue;
+      }
+      vec2 c = tyn_segment_coefficients(k == 0u ? 0.0 : tap_w[k - 1u], tap_w[k]);
+      TynPfTaps segment;
+      segment.v = v;
+      segment.count = c.y == 0.0 ? 1u : 2u;
+      segment.u[0] = taps.u[k];
+      segment.c[0] = c.x;
+      segment.u[1] = k == 0u ? 0.0 : taps.u[k - 1u];
+      segment.c[1] = c.y;
+      visible += tyn_pf_visibility(set, segment, depth_ray, beta);
+    }
+    set_visibility[set] = visible / float(tap_count);
   }
   vec3 visibility = vec3(set_visibility[pf.channel_set.x], set_visibility[pf.channel_set.y],
                          set_visibility[pf.channel_set.z]);

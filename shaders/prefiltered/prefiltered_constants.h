@@ -52,7 +52,7 @@ struct PrefilteredConstants {
   uvec4 channel_set;    // xyz: the set that R, G, B read
   vec4 epipole;         // tyn_epipole of the light (x, y, w homogeneous NDC; side)
   uvec4 fixup;          // x: epipole block side in pixels (0: no block); y: ray-weight taps per
-                        // pixel (weight_taps.h; 1: one lookup)
+                        // pixel (weight_taps.h; 1: one lookup); z: 1 = segmented reconstruction
   vec4 bounds;          // x: β between the moment bounds (peters2017 §5.3), negative: adaptive (§5.3.1)
 };
 

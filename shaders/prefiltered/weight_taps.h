@@ -44,6 +44,10 @@ TYN_FUNC float tyn_neg_log1m_over_y(float y) {
   return -log(u) / (1.0f - u);
 }
 
+// W(τ) = ∫_0^τ e^{−σ u} du: the reference ray's weight up to τ, by which a stored prefix average is
+// de-normalised (the prefix sums' own weights, rectification.h).
+TYN_FUNC float tyn_prefix_weight(float sigma, float tau) { return tau * tyn_one_minus_exp_over_x(sigma * tau); }
+
 // Where the k-th of `taps` segments ends, as a fraction of τ_end: the q = k/taps quantile of the ray's
 // weight, whose optical depth over its whole extent is x = σ κ τ_end = σ s. F(q) = −ln(1 − q(1 − e^{−x}))/x.
 TYN_FUNC float tyn_weight_tap_fraction(float optical_depth, uint k, uint taps) {
@@ -76,12 +80,29 @@ TYN_FUNC vec2 tyn_weight_tap(float sigma, float kappa, float tau_end, uint k, ui
   if (taps <= 1u || !(tau_end > 0.0f)) return vec2(1.0f, k == taps ? 1.0f : 0.0f);
   float fraction = tyn_weight_tap_fraction(optical_depth, k, taps);
   float tau = tau_end * fraction;
-  float w = tau * tyn_one_minus_exp_over_x(sigma * tau);  // W(τ_k)
+  float w = tyn_prefix_weight(sigma, tau);  // W(τ_k)
   float g = tyn_weight_tap_ratio(sigma, optical_depth, tau_end, k, taps);
   float g_next = tyn_weight_tap_ratio(sigma, optical_depth, tau_end, k + 1u, taps);
   float total = tau_end * tyn_one_minus_exp_over_x(optical_depth);
   // g decreases for κ ≥ 1; rounding may leave a difference of either sign next to κ = 1.
   return vec2(fraction, max(w * (g - g_next), 0.0f) / total);
+}
+
+// Segmented reconstruction: the representation of segment k alone, (P(τ_k) − P(τ_{k−1})) / ΔW, is
+// the combination c.x·A(τ_k) + c.y·A(τ_{k−1}) of two lookups with c.x + c.y = 1 (so it holds for
+// stored values too, every stored channel being affine in the representation; storage_variants.glsl).
+// c.y ≤ 0: a difference, not a convex combination, so rounding of the stored averages is amplified
+// by W(τ_k)/ΔW and the result may leave the moment domain by that much (the variant's bias toward b*
+// and the bounds' pivot clamp absorb it; measured in docs/PREFILTERED.md). w_lo = 0 (the ray's first
+// segment) or a segment of no weight returns the lookup at τ_k alone: c = (1, 0).
+// Every segment holds 1/K of the ray's weight (tyn_weight_tap_fraction) and g_k = (total/K)/ΔW_k,
+// so Σ_k (1/K)·segment_k is exactly Σ_k c_k A(τ_k) of tyn_weight_tap: the same linear average. The
+// difference is where the non-linear reconstruction runs: once per segment, on a distribution of
+// occluders from a quarter of the ray rather than all of it (test_weight_taps.cpp checks the identity).
+TYN_FUNC vec2 tyn_segment_coefficients(float w_lo, float w_hi) {
+  if (!(w_lo > 0.0f) || !(w_hi > w_lo)) return vec2(1.0f, 0.0f);
+  float inv = 1.0f / (w_hi - w_lo);
+  return vec2(w_hi * inv, -w_lo * inv);
 }
 
 // Where a tap at reference distance τ reads along its row. Both rectifications measure distance

@@ -196,10 +196,12 @@ enum class PrefixSumScheme : std::uint32_t {
 struct PrefilteredSettings {
   PrefilteredBasis basis = PrefilteredBasis::Moments6_64;  ///< default: peters2017 §5.5.3's recommendation
   PrefilteredRectification rectification = PrefilteredRectification::Automatic;
-  /// Rectified map rows (epipolar slices), 16..4096, default 1024.
-  std::uint32_t rows = 1024;
-  /// Rectified map columns (texels along every view ray of a slice), 16..4096, default 1024.
-  std::uint32_t columns = 1024;
+  /// Rectified map rows (epipolar slices), 16..4096, default 512.
+  std::uint32_t rows = 512;
+  /// Rectified map columns (texels along every view ray of a slice), 16..4096, default 2048: with
+  /// the segmented reconstruction the error near the epipole falls with the columns and hardly with
+  /// the rows, so the default 1M texels are 512 × 2048 (docs/PREFILTERED.md "Segmented reconstruction").
+  std::uint32_t columns = 2048;
   /// Resample a moment shadow map built from the host's with bilinear filtering and peters2017's
   /// Algorithm 2 (two depths per texel) instead of one nearest texel: shafts from straight
   /// silhouettes do not alias. Default true.
@@ -210,6 +212,13 @@ struct PrefilteredSettings {
   /// prefix sums to the pixel's own ray (its transmittance falls faster than the reference's when
   /// it runs closer to the light direction; docs/PREFILTERED.md); needs spacing = FastestRay.
   std::uint32_t rayWeightTaps = 4;
+  /// With rayWeightTaps = K > 1: reconstruct the visibility of each of the K segments between the
+  /// lookups on its own (the difference of two lookups: that segment's occluders alone) and average
+  /// the K results, instead of reconstructing once from their combination. The same linear average,
+  /// but each reconstruction sees a quarter of the ray's occluders, so the moment bounds leave less
+  /// doubt (docs/PREFILTERED.md "Segmented reconstruction"); K reconstructions per pixel instead of
+  /// one. No effect with one lookup. Default true.
+  bool segmentedReconstruction = true;
   PrefixSumScheme prefixSums = PrefixSumScheme::RowParallel;
   /// Moment bases: where the shadow intensity is taken between the sharp lower bound (β = 1,
   /// scattering overestimated) and upper bound (β = 0). true: peters2017 §5.3.1's adaptive

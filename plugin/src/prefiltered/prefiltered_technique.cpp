@@ -388,7 +388,8 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   k.projective = prefiltered::toGpu(proj);
   k.map = glm::uvec4(settings.columns, settings.rows, projective ? 1u : 0u, !projective && rect.fullCircle ? 1u : 0u);
   k.options = glm::uvec4(settings.filteredResampling ? 1u : 0u, static_cast<std::uint32_t>(settings.spacing), sets, mapSize);
-  k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, 0u, 0u);
+  const bool segmented = settings.segmentedReconstruction && settings.rayWeightTaps > 1;
+  k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, segmented ? 1u : 0u, 0u);
   k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation,
                        settings.depthBounds ? 1.0f : 0.0f, 0.0f, 0.0f);
 
@@ -408,6 +409,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
           std::to_string(settings.columns) + " columns, " + rectNote + ", " + extinctionNote +
           (settings.filteredResampling ? ", filtered resampling" : ", nearest resampling") +
           (settings.depthBounds ? ", row depth bounds" : "") +
+          (segmented ? ", segmented reconstruction (" + std::to_string(settings.rayWeightTaps) + " segments)" : "") +
           (blockOnScreen ? ", epipole block " + std::to_string(settings.epipoleBlockPixels) + " px ray-marched" : "");
   return {};
 }

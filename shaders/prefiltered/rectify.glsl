@@ -17,6 +17,12 @@ layout(local_size_x = TYN_PF_TEXEL_GROUP, local_size_y = TYN_PF_TEXEL_GROUP) in;
 // A light ray beyond every occluder (lit along its whole length).
 const float TYN_PF_NO_OCCLUDER = 1.0;
 
+// The rectified depth of host depth `host` on the light ray whose clip depth is depth0 at height 0,
+// or no occluder for a host depth at or beyond `clear_from` (the clear value, 1, less any tolerance).
+float tyn_pf_occluder_depth(float host, float clear_from, float radial, float depth0, float depth_per_h) {
+  return host < clear_from ? tyn_pf_rectified_depth(radial, (host - depth0) / depth_per_h) : TYN_PF_NO_OCCLUDER;
+}
+
 void main() {
   uvec2 texel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(texel, pf.map.xy))) return;
@@ -44,9 +50,7 @@ void main() {
       vec2 host = clamp(two.xy * 0.5 + 0.5, 0.0, 1.0);  // signed → [0, 1] host depth
       weights = two.zw;
       for (int k = 0; k < 2; ++k) {
-        if (host[k] < 1.0 - TYN_PF_CLEAR_DEPTH_TOLERANCE) {
-          depths[k] = tyn_pf_rectified_depth(radial, (host[k] - clip0.z) / depth_per_h);
-        }
+        depths[k] = tyn_pf_occluder_depth(host[k], 1.0 - TYN_PF_CLEAR_DEPTH_TOLERANCE, radial, clip0.z, depth_per_h);
       }
       if (tyn_pf_depth_bounds()) {
         // The bilinear lookup mixes these 2 × 2 host texels (the moment map has one texel per
@@ -58,8 +62,7 @@ void main() {
                                max(max(quad.x, quad.y), max(quad.z, quad.w)));
         bounds = tyn_depth_bounds_empty();
         for (int k = 0; k < 2; ++k) {
-          float d = host_range[k] < 1.0 ? tyn_pf_rectified_depth(radial, (host_range[k] - clip0.z) / depth_per_h)
-                                        : TYN_PF_NO_OCCLUDER;
+          float d = tyn_pf_occluder_depth(host_range[k], 1.0, radial, clip0.z, depth_per_h);
           bounds = tyn_depth_bounds_merge(bounds, vec2(d));
         }
       }
@@ -68,7 +71,7 @@ void main() {
       ivec2 host_texel = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
       float host = texelFetch(shadow_maps[0], host_texel, 0).r;
       // A texel at the clear value (1) has no occluder (as in the Reference's walk).
-      if (host < 1.0) depths.x = tyn_pf_rectified_depth(radial, (host - clip0.z) / depth_per_h);
+      depths.x = tyn_pf_occluder_depth(host, 1.0, radial, clip0.z, depth_per_h);
       bounds = depths.xx;
     }
   }

@@ -248,34 +248,25 @@ void PrefilteredTechnique::destroy(const Gpu& gpu) {
   *this = PrefilteredTechnique{};
 }
 
-Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, std::uint32_t basis, std::uint32_t columns,
-                                         std::uint32_t rows, std::uint32_t sets, std::uint32_t momentMapSize,
-                                         bool depthBounds, std::uint64_t frameIndex) {
-  if (maps_.basis == basis && maps_.columns == columns && maps_.rows == rows && maps_.sets == sets &&
-      maps_.momentMapSize == momentMapSize && maps_.depthBounds == depthBounds) {
-    return {};
-  }
+Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, const MapKey& key, std::uint64_t frameIndex) {
+  if (maps_.key == key) return {};
   // Frames still in flight may use the old maps: they are destroyed once those have completed.
-  if (maps_.columns != 0) {
+  if (maps_.key.columns != 0) {
     retired_.retire(frameIndex, maps_);
     maps_ = Maps{};
   }
-  const Storage& s = kStorage[basis];
+  const Storage& s = kStorage[key.basis];
   Maps fresh;
-  fresh.basis = basis;
-  fresh.columns = columns;
-  fresh.rows = rows;
-  fresh.sets = sets;
-  fresh.momentMapSize = momentMapSize;
-  fresh.depthBounds = depthBounds;
-  const VkExtent2D extent{columns, rows};
-  const VkExtent2D boundsExtent = depthBounds ? extent : VkExtent2D{1, 1};
-  Outcome outcome = createImage(gpu, kMomentMapFormat, {momentMapSize, momentMapSize}, kMapUsage, fresh.momentMap);
+  fresh.key = key;
+  const VkExtent2D extent{key.columns, key.rows};
+  const VkExtent2D boundsExtent = key.depthBounds ? extent : VkExtent2D{1, 1};
+  Outcome outcome =
+      createImage(gpu, kMomentMapFormat, {key.momentMapSize, key.momentMapSize}, kMapUsage, fresh.momentMap);
   if (outcome) outcome = createImageArray(gpu, s.a, extent, s.layersA, kMapUsage, fresh.rectifiedA);
-  if (outcome) outcome = createImageArray(gpu, s.a, extent, s.layersA * sets, kMapUsage, fresh.prefixA);
+  if (outcome) outcome = createImageArray(gpu, s.a, extent, s.layersA * key.sets, kMapUsage, fresh.prefixA);
   if (outcome && s.b != VK_FORMAT_UNDEFINED) {
     outcome = createImageArray(gpu, s.b, extent, 1, kMapUsage, fresh.rectifiedB);
-    if (outcome) outcome = createImageArray(gpu, s.b, extent, sets, kMapUsage, fresh.prefixB);
+    if (outcome) outcome = createImageArray(gpu, s.b, extent, key.sets, kMapUsage, fresh.prefixB);
   }
   for (OwnedImage* bounds : {&fresh.depthBoundsTexels, &fresh.depthBoundsPrefix}) {
     if (outcome) outcome = createImage(gpu, kDepthBoundsFormat, boundsExtent, VK_IMAGE_USAGE_STORAGE_BIT, *bounds);
@@ -393,9 +384,9 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation,
                        settings.depthBounds ? 1.0f : 0.0f, 0.0f, 0.0f);
 
-  if (Outcome o = ensureMaps(gpu, basis, settings.columns, settings.rows, sets,
-                             settings.filteredResampling ? mapSize : 1u, settings.depthBounds, frameIndex);
-      !o) {
+  const MapKey key{basis, settings.columns, settings.rows, sets, settings.filteredResampling ? mapSize : 1u,
+                   settings.depthBounds};
+  if (Outcome o = ensureMaps(gpu, key, frameIndex); !o) {
     return o;
   }
   std::memcpy(constants_[slot].mapped, &k, sizeof(k));
@@ -487,19 +478,19 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
   discardToGeneral(gpu, cmd, {&maps_.momentMap, &maps_.rectifiedA, &maps_.rectifiedB, &maps_.prefixA, &maps_.prefixB,
                               &maps_.depthBoundsTexels, &maps_.depthBoundsPrefix});
   if (plan_.filtered) {
-    const std::uint32_t size = maps_.momentMapSize;
+    const std::uint32_t size = maps_.key.momentMapSize;
     pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {
       gpu.vk.vkCmdDispatch(cmd, groups(size, gpu::TYN_PF_TEXEL_GROUP), groups(size, gpu::TYN_PF_TEXEL_GROUP), 1);
     });
   }
   pass("prefiltered_rectify", rectifyPipelines_[plan_.basis], [&] {
-    gpu.vk.vkCmdDispatch(cmd, groups(maps_.columns, gpu::TYN_PF_TEXEL_GROUP),
-                         groups(maps_.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
+    gpu.vk.vkCmdDispatch(cmd, groups(maps_.key.columns, gpu::TYN_PF_TEXEL_GROUP),
+                         groups(maps_.key.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
   });
   const VkPipeline prefix = plan_.threadPerRow ? threadPerRowPipelines_[plan_.basis] : rowParallelPipelines_[plan_.basis];
   const std::uint32_t rowsPerGroup = plan_.threadPerRow ? gpu::TYN_PF_THREAD_PER_ROW_GROUP : gpu::TYN_PF_ROWS_PER_GROUP;
   pass("prefiltered_prefix_sums", prefix, [&] {
-    gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.rows, rowsPerGroup), plan_.sets * slotsOf(storage));
+    gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup), plan_.sets * slotsOf(storage));
   });
   pass("prefiltered_evaluate", evaluatePipelines_[plan_.basis], [&] {
     gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),

@@ -52,6 +52,16 @@ class PrefilteredTechnique {
               GpuTimer& timer, std::vector<std::string>& passes);
 
  private:
+  // What the maps are made for: a frame whose key differs gets new maps.
+  struct MapKey {
+    std::uint32_t basis = ~0u;
+    std::uint32_t columns = 0;  // 0: no maps yet
+    std::uint32_t rows = 0;
+    std::uint32_t sets = 0;
+    std::uint32_t momentMapSize = 0;  // 1 without filtered resampling
+    bool depthBounds = false;
+    bool operator==(const MapKey&) const = default;
+  };
   struct Maps {
     OwnedImage momentMap;   // host map size × 1 (RGBA16_UNORM), 1 × 1 when filtering is off
     OwnedImage rectifiedA;  // columns × rows, one layer per slot of image A
@@ -60,15 +70,9 @@ class PrefilteredTechnique {
     OwnedImage prefixB;
     OwnedImage depthBoundsTexels;  // columns × rows (RG16_UNORM), 1 × 1 without the row depth bounds
     OwnedImage depthBoundsPrefix;
-    std::uint32_t basis = ~0u;
-    std::uint32_t columns = 0;
-    std::uint32_t rows = 0;
-    std::uint32_t sets = 0;
-    std::uint32_t momentMapSize = 0;
-    bool depthBounds = false;
+    MapKey key;
   };
-  Outcome ensureMaps(const Gpu& gpu, std::uint32_t basis, std::uint32_t columns, std::uint32_t rows,
-                     std::uint32_t sets, std::uint32_t momentMapSize, bool depthBounds, std::uint64_t frameIndex);
+  Outcome ensureMaps(const Gpu& gpu, const MapKey& key, std::uint64_t frameIndex);
   void destroyMaps(const Gpu& gpu, Maps& maps);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
 

@@ -392,6 +392,30 @@ TEST(Prefiltered, SpacingHeuristicsMeasured) {
   expectNoValidationMessages();
 }
 
+// One on/off setting for one scene and basis, defaults otherwise: both renders against the scene's
+// Reference, printed as "<what>: off X%, on Y%"; the render with it on is finite and its note names
+// `what`, the other's does not.
+struct OffOn {
+  Comparison off;
+  Comparison on;
+};
+
+OffOn compareOffOn(const char* name, const host::Scene& scene, PrefilteredBasis basis,
+                   bool PrefilteredSettings::*setting, const char* what) {
+  PrefilteredSettings off;
+  off.basis = basis;
+  off.*setting = false;
+  PrefilteredSettings on = off;
+  on.*setting = true;
+  OffOn r{compare(name, scene, off), compare(name, scene, on)};
+  std::printf("[ %s ] %s %s: off %.2f%%, on %.2f%% relative RMSE\n", name, to_string(basis), what,
+              r.off.stats.relativeRmse * 100.0, r.on.stats.relativeRmse * 100.0);
+  EXPECT_EQ(r.on.stats.nonFinite, 0u);
+  EXPECT_NE(r.on.result.stats.techniqueNote.find(what), std::string::npos);
+  EXPECT_EQ(r.off.result.stats.techniqueNote.find(what), std::string::npos);
+  return r;
+}
+
 // The row depth bounds (shaders/prefiltered/depth_bounds.h) give rays whose row leaves no doubt
 // their exact verdict instead of the reconstruction. Where every ray of a closed room is in the
 // roof's shadow but for the window beams, that removes most of the moments' leak; elsewhere it may
@@ -402,22 +426,11 @@ TEST(Prefiltered, RowDepthBoundsRemoveTheLeaks) {
     for (PrefilteredBasis basis : {PrefilteredBasis::Moments4_64, PrefilteredBasis::Moments6_64,
                                    PrefilteredBasis::Fourier32}) {
       SCOPED_TRACE(std::string(name) + " " + to_string(basis));
-      PrefilteredSettings off;
-      off.basis = basis;
-      off.depthBounds = false;
-      PrefilteredSettings on = off;
-      on.depthBounds = true;
-      const Comparison without = compare(name, scene, off);
-      const Comparison with = compare(name, scene, on);
-      std::printf("[ %s ] %s row depth bounds: off %.2f%%, on %.2f%% relative RMSE\n", name, to_string(basis),
-                  without.stats.relativeRmse * 100.0, with.stats.relativeRmse * 100.0);
-      EXPECT_EQ(with.stats.nonFinite, 0u);
-      EXPECT_LE(with.stats.relativeRmse, without.stats.relativeRmse * 1.001);
-      EXPECT_NE(with.result.stats.techniqueNote.find("row depth bounds"), std::string::npos);
-      EXPECT_EQ(without.result.stats.techniqueNote.find("row depth bounds"), std::string::npos);
+      const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::depthBounds, "row depth bounds");
+      EXPECT_LE(r.on.stats.relativeRmse, r.off.stats.relativeRmse * 1.001);
       // The room: its leak (several times the mean) at least halves.
       if (std::string(name) == "window-room") {
-        EXPECT_LT(with.stats.relativeRmse, 0.5 * without.stats.relativeRmse);
+        EXPECT_LT(r.on.stats.relativeRmse, 0.5 * r.off.stats.relativeRmse);
       }
     }
   }
@@ -434,23 +447,14 @@ TEST(Prefiltered, SegmentedReconstructionLowersTheError) {
     const host::Scene scene = loadTestScene(name);
     for (PrefilteredBasis basis : {PrefilteredBasis::Moments4_64, PrefilteredBasis::Moments6_64}) {
       SCOPED_TRACE(std::string(name) + " " + to_string(basis));
-      PrefilteredSettings off;
-      off.basis = basis;
-      off.segmentedReconstruction = false;
-      PrefilteredSettings on = off;
-      on.segmentedReconstruction = true;
-      const Comparison without = compare(name, scene, off);
-      const Comparison with = compare(name, scene, on);
-      std::printf("[ %s ] %s segmented reconstruction: off %.2f%%, on %.2f%% relative RMSE\n", name,
-                  to_string(basis), without.stats.relativeRmse * 100.0, with.stats.relativeRmse * 100.0);
-      EXPECT_EQ(with.stats.nonFinite, 0u);
+      const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::segmentedReconstruction,
+                                   "segmented reconstruction");
       if (std::string(name) == "forest") {
-        EXPECT_LE(with.stats.relativeRmse, without.stats.relativeRmse);
+        EXPECT_LE(r.on.stats.relativeRmse, r.off.stats.relativeRmse);
       } else {
-        EXPECT_LT(with.stats.relativeRmse, 0.5 * without.stats.relativeRmse);
+        EXPECT_LT(r.on.stats.relativeRmse, 0.5 * r.off.stats.relativeRmse);
       }
-      EXPECT_NE(with.result.stats.techniqueNote.find("segmented reconstruction (4 segments)"), std::string::npos);
-      EXPECT_EQ(without.result.stats.techniqueNote.find("segmented reconstruction"), std::string::npos);
+      EXPECT_NE(r.on.result.stats.techniqueNote.find("segmented reconstruction (4 segments)"), std::string::npos);
     }
   }
   PrefilteredSettings single;

@@ -9,7 +9,8 @@
 // With rayWeightTaps > 1 the lookup is K lookups along the row whose combination re-weights the
 // row's prefix sums to the pixel's own ray (weight_taps.h). Segmented reconstruction (the default)
 // reconstructs each of the K segments between the taps from the difference of two lookups and
-// averages the K visibilities; otherwise the reconstruction runs once, on the combined representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
+// averages the K visibilities; otherwise the reconstruction runs once, on the combined
+// representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
 // The storage variant is a specialisation constant: this pass only samples, so it needs no format qualifier.
 #extension GL_GOOGLE_include_directive : require
 
@@ -133,25 +134,28 @@ void main() {
       set_visibility[set] = tyn_pf_visibility(set, taps, depth_ray, beta);
       continue;
     }
-    // The K taps: where each reads (u, before the half-texel shift), the reference's weight up to
-    // it, and its coefficient in the combined lookup.
+    // The K taps: where each reads (u, before the half-texel shift) and the reference's weight up
+    // to it. Only the combined lookup needs the taps' coefficients (tyn_weight_tap, several
+    // exponentials and logarithms each), so the segments take the fraction alone.
     float sigma = pf.set_extinction[set];
+    float optical_depth = sigma * kappa * tau_end;
     float tap_u[TYN_PF_MAX_TAPS];
     float tap_w[TYN_PF_MAX_TAPS];
-    float sum = 0.0;
     for (uint k = 0u; k < tap_count; ++k) {
-      vec2 tap = tyn_weight_tap(sigma, kappa, tau_end, k + 1u, tap_count);
+      float tau = tyn_weight_tap_fraction(optical_depth, k + 1u, tap_count) * tau_end;
       // The last tap is the ray's end itself, where the single lookup reads.
-      float tau = tap.x * tau_end;
       tap_u[k] = k + 1u == tap_count ? uvd.x
                  : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
                                        : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
       tap_w[k] = tyn_prefix_weight(sigma, tau);
       taps.u[k] = tyn_prefix_lookup_u(tap_u[k], columns);
-      taps.c[k] = tap.y;
-      sum += tap.y;
     }
     if (!segmented) {
+      float sum = 0.0;
+      for (uint k = 0u; k < tap_count; ++k) {
+        taps.c[k] = tyn_weight_tap(sigma, kappa, tau_end, k + 1u, tap_count).y;
+        sum += taps.c[k];
+      }
       // Σ c = 1 in exact arithmetic; the rounding that tyn_weight_tap clamps is renormalised.
       taps.count = tap_count;
       for (uint k = 0u; k < tap_count; ++k) taps.c[k] /= max(sum, 1.0e-30);

@@ -79,17 +79,15 @@ struct MissedBar {
   const char* reason;
 };
 constexpr const char* kIndoorLeak =
-    "a closed room lit through two windows: the rays that cross a window beam have the roof's shadow and the "
-    "beam in one row, where the moment bounds leave doubt between the two, and the Reference is black "
-    "elsewhere (mean |ref| 0.017), so the beams' error is about the room's mean (the rays entirely in "
-    "shadow take the row depth bounds' exact verdict)";
+    "a closed room lit through two windows: the Reference is black but for the beams and the windows "
+    "(mean |ref| 0.017); what is left is in the beams, where the columns between a segment's trimmed runs "
+    "still hold occluders just in front of the ray (the walls around the windows), which the moment bounds "
+    "cannot tell from the ray's own depth (the 4-moment variants meet their bar here)";
 
 const MissedBar kMissedBars[] = {
-    {"window-room", PrefilteredBasis::Moments4_64, 0.31, kIndoorLeak},
-    {"window-room", PrefilteredBasis::Moments4_128, 0.30, kIndoorLeak},
-    {"window-room", PrefilteredBasis::Moments6_64, 0.41, kIndoorLeak},
-    {"window-room", PrefilteredBasis::Moments6_96, 0.29, kIndoorLeak},
-    {"window-room", PrefilteredBasis::Moments6_192, 0.26, kIndoorLeak},
+    {"window-room", PrefilteredBasis::Moments6_64, 0.16, kIndoorLeak},
+    {"window-room", PrefilteredBasis::Moments6_96, 0.066, kIndoorLeak},
+    {"window-room", PrefilteredBasis::Moments6_192, 0.063, kIndoorLeak},
 };
 
 const MissedBar* missedBar(const std::string& scene, PrefilteredBasis basis) {
@@ -118,6 +116,7 @@ void expectWithinBar(const std::string& scene, PrefilteredBasis basis, const Err
     std::printf("[ %s ] BAR MISSED: %s measured %.2f%% against %.0f%% (%s)\n", scene.c_str(), to_string(basis),
                 stats.relativeRmse * 100.0, bar(basis) * 100.0, missed->reason);
     EXPECT_LE(stats.relativeRmse, missed->measured) << describe(stats);
+    EXPECT_GT(stats.relativeRmse, bar(basis)) << "the bar is met: take this case out of kMissedBars";
   } else {
     EXPECT_LE(stats.relativeRmse, bar(basis)) << to_string(basis) << ": " << describe(stats);
   }
@@ -439,8 +438,8 @@ TEST(Prefiltered, RowDepthBoundsRemoveTheLeaks) {
 
 // Segmented reconstruction (weight_taps.h tyn_segment_coefficients): each of the 4 segments between
 // the lookups reconstructed on its own. Measured off -> on with the default 512 x 2048 map
-// (docs/PREFILTERED.md): moments6_64 pillars 5.26 -> 2.27%, window-room 86.4 -> 40.3%, forest
-// 5.95 -> 4.34%. Asserted: the segments at least halve pillars' and window-room's errors and do not
+// (docs/PREFILTERED.md), trimmed segments (the default) included: moments6_64 pillars 5.26 ->
+// 1.03%, window-room 86.4 -> 15.3%, forest 5.95 -> 3.91%. Asserted: the segments at least halve pillars' and window-room's errors and do not
 // worsen forest's for these two variants, and the note says when they run (not with one lookup).
 TEST(Prefiltered, SegmentedReconstructionLowersTheError) {
   for (const char* name : {"pillars", "window-room", "forest"}) {
@@ -462,6 +461,32 @@ TEST(Prefiltered, SegmentedReconstructionLowersTheError) {
   const Comparison one = compare("pillars", loadTestScene("pillars"), single);
   EXPECT_EQ(one.result.stats.techniqueNote.find("segmented reconstruction"), std::string::npos)
       << "one lookup is one segment";
+  expectNoValidationMessages();
+}
+
+// Trimmed segments (depth_bounds.h tyn_depth_bounds_run_end / run_begin): the runs at both ends of a
+// segment that the row's min/max tree decides count exactly, with the ray's own weights, and only
+// the columns between them are reconstructed. Measured off -> on (docs/PREFILTERED.md "Trimmed
+// segments", 320x180): moments6_64 window-room 40.3 -> 15.3%, pillars 2.27 -> 1.03%, forest
+// 4.34 -> 3.91%. Asserted: no case gets worse, window-room's error at least halves, and the note
+// says when they run (not without the segments).
+TEST(Prefiltered, TrimmedSegmentsLowerTheError) {
+  for (const char* name : {"window-room", "pillars", "forest"}) {
+    const host::Scene scene = loadTestScene(name);
+    for (PrefilteredBasis basis : {PrefilteredBasis::Moments4_64, PrefilteredBasis::Moments6_64}) {
+      SCOPED_TRACE(std::string(name) + " " + to_string(basis));
+      const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::trimmedSegments, "trimmed segments");
+      EXPECT_LE(r.on.stats.relativeRmse, r.off.stats.relativeRmse * 1.001);
+      if (std::string(name) == "window-room") {
+        EXPECT_LT(r.on.stats.relativeRmse, 0.5 * r.off.stats.relativeRmse);
+      }
+    }
+  }
+  PrefilteredSettings unsegmented;
+  unsegmented.segmentedReconstruction = false;
+  const Comparison c = compare("pillars", loadTestScene("pillars"), unsegmented);
+  EXPECT_EQ(c.result.stats.techniqueNote.find("trimmed segments"), std::string::npos)
+      << "only segments are trimmed";
   expectNoValidationMessages();
 }
 
@@ -620,7 +645,7 @@ TEST(Prefiltered, CommandLineSettings) {
   std::string error;
   ASSERT_TRUE(parse({"scene.json", "--technique", "prefiltered", "--prefiltered",
                      "basis=fourier32,rectification=projective,rows=64,columns=128,filtered=0,spacing=mean-theta,"
-                     "taps=1,prefix-sums=thread-per-row,beta=0.25,epipole-block=0,depth-bounds=0,segments=0"},
+                     "taps=1,prefix-sums=thread-per-row,beta=0.25,epipole-block=0,depth-bounds=0,segments=0,trim=0"},
                     o, error))
       << error;
   EXPECT_EQ(o.technique, Technique::Prefiltered);
@@ -639,6 +664,7 @@ TEST(Prefiltered, CommandLineSettings) {
   EXPECT_EQ(s.epipoleBlockPixels, 0u);
   EXPECT_FALSE(s.depthBounds);
   EXPECT_FALSE(s.segmentedReconstruction);
+  EXPECT_FALSE(s.trimmedSegments);
 
   samples::RenderOptions adaptive;
   ASSERT_TRUE(parse({"scene.json", "--prefiltered", "beta=adaptive"}, adaptive, error)) << error;

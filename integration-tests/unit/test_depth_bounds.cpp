@@ -12,6 +12,19 @@
 #include "prefiltered/depth_bounds.h"
 #include "prefiltered/rectification.h"
 
+// The tree the searches read (tyn_depth_bounds_node is the includer's: the shader reads its
+// image, this test its own vector laid out the same way); rows_columns.x picks the row.
+namespace {
+std::vector<std::vector<tyndall::gpu::vec2>> gTreeRows;
+}  // namespace
+
+namespace tyndall::gpu {
+vec2 tyn_depth_bounds_node(ivec3 rows_columns, uint level, int index) {
+  const auto& row = gTreeRows.at(static_cast<std::size_t>(rows_columns.x));
+  return row.at(static_cast<std::size_t>(tyn_depth_bounds_level_offset(rows_columns.z, level) + index));
+}
+}  // namespace tyndall::gpu
+
 namespace {
 
 using namespace tyndall::gpu;
@@ -118,6 +131,70 @@ TEST(DepthBounds, TexelsCoverTheBilinearLookup) {
           const auto place = [&](int j) { return wrap ? (j % rows + rows) % rows : std::clamp(j, 0, rows - 1); };
           ASSERT_EQ(t.y, place(j0)) << v;
           ASSERT_EQ(t.z, place(j0 + 1)) << v;
+        }
+      }
+    }
+  }
+}
+
+// The min/max tree as the prefix-sum pass builds it (level l node j merges level l − 1 nodes 2j,
+// 2j + 1), laid out by tyn_depth_bounds_level_offset; the runs found from both ends of random
+// ranges must be what a linear scan of the texels finds, for any column count (powers of two or
+// not) and rows of runs of every length.
+TEST(DepthBounds, TreeSearchesFindTheRunsALinearScanFinds) {
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int columns : {1, 2, 3, 5, 16, 17, 100, 1024, 2048, 4096}) {
+    const uint levels = tyn_depth_bounds_levels(columns);
+    ASSERT_EQ(tyn_depth_bounds_level_nodes(columns, levels - 1u), 1);
+    ASSERT_LE(tyn_depth_bounds_tree_width(columns), 2 * columns + static_cast<int>(levels));
+    ASSERT_LE(levels, TYN_DEPTH_BOUNDS_MAX_LEVELS);
+    for (int trial = 0; trial < 40; ++trial) {
+      // Runs of depths below or above 0.5 (some texels straddling it), of random lengths.
+      std::vector<vec2> texels(static_cast<std::size_t>(columns));
+      const float runScale = static_cast<float>(1 + trial % 8) * static_cast<float>(columns) / 8.0f;
+      int c = 0;
+      while (c < columns) {
+        const int length = 1 + static_cast<int>(unit(rng) * runScale);
+        const float kind = unit(rng);
+        for (int i = c; i < std::min(columns, c + length); ++i) {
+          const float a = kind < 0.45f ? 0.5f * unit(rng) : kind < 0.9f ? 0.5f + 0.5f * unit(rng) : unit(rng);
+          const float b = kind < 0.9f ? a : unit(rng);
+          texels[static_cast<std::size_t>(i)] = vec2(std::min(a, b), std::max(a, b));
+        }
+        c += length;
+      }
+      std::vector<vec2> tree(texels);
+      for (uint l = 1u; l < levels; ++l) {
+        const int below = tyn_depth_bounds_level_offset(columns, l - 1u);
+        const int nodesBelow = tyn_depth_bounds_level_nodes(columns, l - 1u);
+        ASSERT_EQ(static_cast<int>(tree.size()), tyn_depth_bounds_level_offset(columns, l));
+        for (int j = 0; j < tyn_depth_bounds_level_nodes(columns, l); ++j) {
+          const vec2 right = 2 * j + 1 < nodesBelow ? tree[static_cast<std::size_t>(below + 2 * j + 1)]
+                                                    : tyn_depth_bounds_empty();
+          tree.push_back(tyn_depth_bounds_merge(tree[static_cast<std::size_t>(below + 2 * j)], right));
+        }
+      }
+      ASSERT_EQ(static_cast<int>(tree.size()), tyn_depth_bounds_tree_width(columns));
+      gTreeRows.assign(1, tree);
+      const float depthRay = 0.5f;
+      const auto side = [&](int i) { return tyn_depth_bounds_verdict(texels[static_cast<std::size_t>(i)], depthRay); };
+      for (int query = 0; query < 50; ++query) {
+        int first = static_cast<int>(unit(rng) * static_cast<float>(columns));
+        int last = static_cast<int>(unit(rng) * static_cast<float>(columns));
+        first = std::min(first, columns - 1);
+        last = std::min(last, columns - 1);
+        if (first > last) std::swap(first, last);
+        for (float s : {0.0f, 1.0f}) {
+          int end = first;
+          while (end <= last && side(end) == s) ++end;
+          int begin = last;
+          while (begin >= first && side(begin) == s) --begin;
+          const ivec3 rc(0, 0, columns);
+          ASSERT_EQ(tyn_depth_bounds_run_end(rc, first, last, depthRay, s), end)
+              << columns << " [" << first << ", " << last << "] side " << s;
+          ASSERT_EQ(tyn_depth_bounds_run_begin(rc, first, last, depthRay, s), begin)
+              << columns << " [" << first << ", " << last << "] side " << s;
         }
       }
     }

@@ -97,7 +97,7 @@ const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "
     "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row), "
-    "beta (adaptive|a number in [0, 1]), epipole-block, depth-bounds (0|1), segments (0|1)";
+    "beta (adaptive|a number in [0, 1]), epipole-block, depth-bounds (0|1), segments (0|1), trim (0|1)";
 
 bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
   std::uint32_t value = 0;
@@ -176,6 +176,9 @@ bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out,
     } else if (key == "segments") {
       parsed = parseUint(value, 0, 1, u);
       s.segmentedReconstruction = u != 0;
+    } else if (key == "trim") {
+      parsed = parseUint(value, 0, 1, u);
+      s.trimmedSegments = u != 0;
     } else {
       error = "--prefiltered: unknown key '" + key + "' (keys: " + kPrefilteredKeys + ")";
       return false;
@@ -227,6 +230,7 @@ std::string describe(const PrefilteredSettings& s) {
   if (s.segmentedReconstruction != d.segmentedReconstruction) {
     append(out, "segments", s.segmentedReconstruction ? "1" : "0");
   }
+  if (s.trimmedSegments != d.trimmedSegments) append(out, "trim", s.trimmedSegments ? "1" : "0");
   return out.empty() ? "defaults" : out;
 }
 

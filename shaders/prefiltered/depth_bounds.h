@@ -72,6 +72,109 @@ TYN_FUNC ivec3 tyn_depth_bounds_texels(float u, float v, int columns, int rows, 
   return ivec3(column, row0, row1);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Min/max trees along the rows: trimmed segments
+//
+// A segment of a ray (weight_taps.h) whose texels are not all on one side of z_r may still be on
+// one side for most of its length: a ray that leaves a roof's shadow into a window's beam has a
+// run of texels in shadow, then a run that is lit. Its moments leave doubt about the occluders
+// just in front of z_r (the run in shadow ends there) and β lets a share through. The row says
+// where each run ends, so the evaluation trims both runs off the segment, counts them exactly
+// (0 or 1, with the pixel's own weights) and reconstructs only what lies between: the columns
+// from the first texel that is not on the first texel's side to the last that is not on the last
+// texel's side. Finding those ends is yusov2013's 1D min/max tree (one per row), searched from
+// the segment's two ends in O(log N) nodes.
+//
+// Layout: the tree's levels side by side in the texel image, level 0 (the texels) at x ∈ [0, N),
+// level l ≥ 1 (node j = the merge of texels [j·2^l, (j+1)·2^l)) right after level l − 1; a level
+// holds ⌈N / 2^l⌉ nodes and the last level one. The rectification writes level 0, the prefix-sum
+// pass the others.
+
+TYN_CONST uint TYN_DEPTH_BOUNDS_MAX_LEVELS = 13u;  // N ≤ 4096 columns: levels 0..12
+
+// Nodes of level `level` of a row of `columns` texels: ⌈N / 2^l⌉.
+TYN_FUNC int tyn_depth_bounds_level_nodes(int columns, uint level) {
+  return (columns + (1 << level) - 1) >> level;
+}
+
+// Levels of a row's tree, down to one node (1 for one column).
+TYN_FUNC uint tyn_depth_bounds_levels(int columns) {
+  uint levels = 1u;
+  while (tyn_depth_bounds_level_nodes(columns, levels - 1u) > 1) levels += 1u;
+  return levels;
+}
+
+// x of the first node of `level`.
+TYN_FUNC int tyn_depth_bounds_level_offset(int columns, uint level) {
+  int offset = 0;
+  for (uint l = 0u; l < level; ++l) offset += tyn_depth_bounds_level_nodes(columns, l);
+  return offset;
+}
+
+// Width of the image holding a row's whole tree (< 2N + levels).
+TYN_FUNC int tyn_depth_bounds_tree_width(int columns) {
+  uint levels = tyn_depth_bounds_levels(columns);
+  return tyn_depth_bounds_level_offset(columns, levels);
+}
+
+// Node `index` of `level` of the tree of the rows a lookup reads (both rows of its bilinear
+// lookup merged; rows_columns = (row0, row1, N)): defined by the includer (prefiltered_common.glsl
+// reads the image; the unit test reads its own rows).
+vec2 tyn_depth_bounds_node(ivec3 rows_columns, uint level, int index);
+
+// The first column in [first, last] whose texel is not on `side` (the verdict 0 or 1 a run
+// shares), or last + 1 when the whole range is: a descent from the left, skipping whole nodes
+// that are on `side` and climbing while the next node is a left child.
+TYN_FUNC int tyn_depth_bounds_run_end(ivec3 rows_columns, int first, int last, float depth_ray, float side) {
+  int columns = rows_columns.z;
+  uint levels = tyn_depth_bounds_levels(columns);
+  int i = first;
+  uint level = 0u;
+  // Each node is visited once on the way up and once on the way down: 2 levels nodes at most.
+  for (uint step = 0u; step < 4u * TYN_DEPTH_BOUNDS_MAX_LEVELS; ++step) {
+    if ((i << level) > last || i >= tyn_depth_bounds_level_nodes(columns, level)) return last + 1;
+    if (tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, level, i), depth_ray) == side) {
+      i += 1;
+      while ((i & 1) == 0 && level + 1u < levels) {
+        i >>= 1;
+        level += 1u;
+      }
+    } else {
+      if (level == 0u) return i;
+      i *= 2;
+      level -= 1u;
+    }
+  }
+  return min(i << level, last + 1);  // not reached; the start of the node left is a safe end
+}
+
+// The last column in [first, last] whose texel is not on `side`, or first − 1 when the whole
+// range is: the mirror image of tyn_depth_bounds_run_end.
+TYN_FUNC int tyn_depth_bounds_run_begin(ivec3 rows_columns, int first, int last, float depth_ray, float side) {
+  int columns = rows_columns.z;
+  uint levels = tyn_depth_bounds_levels(columns);
+  int i = last;
+  uint level = 0u;
+  for (uint step = 0u; step < 4u * TYN_DEPTH_BOUNDS_MAX_LEVELS; ++step) {
+    if (i < 0 || ((i + 1) << level) - 1 < first) return first - 1;
+    // A node past the end of its level (the right child of a level's last node) holds nothing.
+    bool on_side = i >= tyn_depth_bounds_level_nodes(columns, level) ||
+                   tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, level, i), depth_ray) == side;
+    if (on_side) {
+      i -= 1;
+      while ((i & 1) == 1 && level + 1u < levels) {
+        i >>= 1;
+        level += 1u;
+      }
+    } else {
+      if (level == 0u) return i;
+      i = 2 * i + 1;
+      level -= 1u;
+    }
+  }
+  return max(((i + 1) << level) - 1, first - 1);
+}
+
 TYN_END
 
 #endif

@@ -9,7 +9,8 @@
 // With rayWeightTaps > 1 the lookup is K lookups along the row whose combination re-weights the
 // row's prefix sums to the pixel's own ray (weight_taps.h). Segmented reconstruction (the default)
 // reconstructs each of the K segments between the taps from the difference of two lookups and
-// averages the K visibilities; otherwise the reconstruction runs once, on the combined
+// averages the K visibilities; trimmed segments (the default with the row depth bounds) reconstruct
+// only the columns between the runs at a segment's two ends that the row decides; otherwise the reconstruction runs once, on the combined
 // representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
 // The storage variant is a specialisation constant: this pass only samples, so it needs no format qualifier.
 #extension GL_GOOGLE_include_directive : require
@@ -86,6 +87,59 @@ float tyn_pf_visibility(uint set, TynPfTaps taps, float depth_ray, float beta) {
                                  tyn_bias_moments(even, TYN_MOMENTS6_B_STAR_EVEN, alpha), zf);
   }
   return 1.0 - tyn_shadow_intensity(bounds, beta);
+}
+
+// The reference distance τ at which the row is read at u (the inverse of tyn_weight_tap_u_*).
+float tyn_pf_tap_tau(float u, float reference_sin, float eta) {
+  return tyn_pf_projective() ? tyn_weight_tap_tau_projective(pf.projective, u, reference_sin, eta)
+                             : tyn_weight_tap_tau_nonlinear(u, reference_sin, pf.nonlinear.origin.w);
+}
+
+// Trimmed segment (depth_bounds.h): segment [u_lo, u_hi] of a row (reference weights w_lo, w_hi
+// at its ends) loses the run of texels at each end that the row decides on its own; the runs count
+// 0 or 1 with the pixel's own weights (rate σκ along τ) and only the columns between them are
+// reconstructed, from the difference of the lookups at their edges. Returns the segment's
+// visibility.
+float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float u_lo, float u_hi, float w_lo, float w_hi,
+                             float depth_ray, float beta, float sigma, float kappa, float reference_sin, float eta) {
+  int columns = rows_columns.z;
+  float n = float(columns);
+  int c_lo = clamp(int(floor(u_lo * n)), 0, columns - 1);
+  int c_hi = clamp(int(floor(u_hi * n)), c_lo, columns - 1);
+  float side_a = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, c_lo), depth_ray);
+  int p = side_a < 0.0 ? c_lo : tyn_depth_bounds_run_end(rows_columns, c_lo, c_hi, depth_ray, side_a);
+  if (p > c_hi) return side_a;
+  float side_b = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, c_hi), depth_ray);
+  int q = side_b < 0.0 ? c_hi : tyn_depth_bounds_run_begin(rows_columns, p, c_hi, depth_ray, side_b);
+  // The runs end at column edges inside the segment.
+  float u_p = p == c_lo ? u_lo : float(p) / n;
+  float u_q = q == c_hi ? u_hi : float(q + 1) / n;
+  float tau_p = tyn_pf_tap_tau(u_p, reference_sin, eta);
+  float tau_q = tyn_pf_tap_tau(u_q, reference_sin, eta);
+  float tau_lo = tyn_pf_tap_tau(u_lo, reference_sin, eta);
+  float tau_hi = tyn_pf_tap_tau(u_hi, reference_sin, eta);
+  // The pixel's own weight of each part: the runs are exact, so their share should be the ray's,
+  // not the reference's (which, slower, gives the later part of a segment too much).
+  float own_rate = sigma * kappa;
+  float own_lo = u_lo > 0.0 ? tyn_prefix_weight(own_rate, tau_lo) : 0.0;
+  float own_hi = tyn_prefix_weight(own_rate, tau_hi);
+  float own_p = p == c_lo ? own_lo : tyn_prefix_weight(own_rate, tau_p);
+  float own_q = q == c_hi ? own_hi : tyn_prefix_weight(own_rate, tau_q);
+  float lit = max(side_a, 0.0) * (own_p - own_lo) + max(side_b, 0.0) * (own_hi - own_q);
+  float w_p = p == c_lo ? w_lo : tyn_prefix_weight(sigma, tau_p);
+  float w_q = q == c_hi ? w_hi : tyn_prefix_weight(sigma, tau_q);
+  if (q >= p && w_q > w_p) {
+    vec2 c = tyn_segment_coefficients(w_p, w_q);
+    TynPfTaps middle;
+    middle.v = v;
+    middle.count = c.y == 0.0 ? 1u : 2u;
+    middle.u[0] = tyn_prefix_lookup_u(u_q, n);
+    middle.c[0] = c.x;
+    middle.u[1] = tyn_prefix_lookup_u(u_p, n);
+    middle.c[1] = c.y;
+    lit += tyn_pf_visibility(set, middle, depth_ray, beta) * (own_q - own_p);
+  }
+  return own_hi > own_lo ? lit / (own_hi - own_lo) : side_a;
 }
 
 void main() {
@@ -166,7 +220,16 @@ void main() {
     // (tyn_segment_coefficients). Its occluders are the row's between two taps, so the prefix's
     // depth bounds at its end decide it when they can, whatever the segments after it hold.
     float visible = 0.0;
+    bool trimmed = pf.fixup.w != 0u;
+    ivec3 rows_columns = ivec3(tyn_depth_bounds_texels(uvd.x, v, int(pf.map.x), int(pf.map.y), pf.map.w != 0u).yz,
+                               int(pf.map.x));
     for (uint k = 0u; k < tap_count; ++k) {
+      if (trimmed) {
+        visible += tyn_pf_trimmed_segment(set, v, rows_columns, k == 0u ? 0.0 : tap_u[k - 1u], tap_u[k],
+                                          k == 0u ? 0.0 : tap_w[k - 1u], tap_w[k], depth_ray, beta, sigma, kappa,
+                                          reference_sin, eta);
+        continue;
+      }
       float segment_verdict = tyn_pf_depth_bounds() ? tyn_pf_depth_bounds_verdict(tap_u[k], v, depth_ray) : -1.0;
       if (segment_verdict >= 0.0) {
         visible += segment_verdict;

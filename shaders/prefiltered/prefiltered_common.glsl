@@ -29,9 +29,10 @@ layout(set = 0, binding = 13) uniform sampler2DArray prefix_b;
 // bindings 14, 15: the prefix sums as storage images (storage_variants.glsl).
 layout(set = 0, binding = 16, std430) buffer FixupBlock { PrefilteredFixupArgs fixup_args; };
 // Row depth bounds (depth_bounds.h), RG16_UNORM: each rectified texel's smallest and largest
-// occluder depth (written by the rectification), and their running min and max along the row
-// (written by the prefix-sum pass, read by the evaluation). 1 × 1 placeholders when off.
-layout(set = 0, binding = 17, rg16) uniform image2D depth_bounds_texels;
+// occluder depth (written by the rectification) followed by the levels of the row's min/max tree,
+// and their running min and max along the row (both written by the prefix-sum pass, read by the
+// evaluation). 1 × 1 placeholders when off.
+layout(set = 0, binding = 17, rg16) uniform coherent image2D depth_bounds_texels;
 layout(set = 0, binding = 18, rg16) uniform image2D depth_bounds_prefix;
 
 #include "common/view_ray.glsl"
@@ -95,6 +96,13 @@ bool tyn_pf_depth_bounds() { return pf.bounds.y != 0.0; }
 
 // The verdict of the row's occluders on a whole view ray ending at (u, v) with rectified depth
 // depth_ray: 0 in shadow, 1 lit, −1 for the reconstruction (depth_bounds.h).
+// A node of the min/max tree of the two rows (row0, row1, N) a lookup reads (depth_bounds.h).
+vec2 tyn_depth_bounds_node(ivec3 rows_columns, uint level, int index) {
+  int x = tyn_depth_bounds_level_offset(rows_columns.z, level) + index;
+  return tyn_depth_bounds_merge(imageLoad(depth_bounds_texels, ivec2(x, rows_columns.x)).xy,
+                                imageLoad(depth_bounds_texels, ivec2(x, rows_columns.y)).xy);
+}
+
 float tyn_pf_depth_bounds_verdict(float u, float v, float depth_ray) {
   ivec3 t = tyn_depth_bounds_texels(u, v, int(pf.map.x), int(pf.map.y), pf.map.w != 0u);
   vec2 bounds = tyn_depth_bounds_merge(imageLoad(depth_bounds_prefix, t.xy).xy,

@@ -13,7 +13,8 @@
 //   - one thread per row (klehm2014 §3.3), 1 × TYN_PF_THREAD_PER_ROW_GROUP.
 // Both produce the same values bit for bit: every thread runs the same sequence of blends.
 // The first layer's workgroups also take the running min and max of the rectified texels' depth
-// bounds along the row (depth_bounds.h), with the same lanes and writes.
+// bounds along the row (depth_bounds.h), with the same lanes and writes. With trimmed segments one
+// more layer of workgroups builds the rows' min/max trees (tyn_pf_build_bounds_tree).
 // Included by prefix_sums_<variant>.comp after defining TYN_PF_BASIS.
 
 #include "prefiltered/prefiltered_common.glsl"
@@ -21,12 +22,44 @@
 
 layout(local_size_x_id = 0, local_size_y_id = 1) in;
 
+// The levels ≥ 1 of the min/max tree of one row (depth_bounds.h), level by level from the one
+// below: the row's lanes share each level's nodes, then wait for each other (the image is
+// coherent) before the next. N − 1 merges per row, a few percent of the prefix sums' blends.
+// Called by every invocation of the workgroup (it synchronises them); rows past the map idle.
+void tyn_pf_build_bounds_tree(uint lane, uint lanes, uint row, uint rows) {
+  int columns = int(pf.map.x);
+  uint levels = tyn_depth_bounds_levels(columns);
+  int below = 0;
+  int nodes_below = columns;
+  for (uint level = 1u; level < levels; ++level) {
+    int offset = below + nodes_below;
+    int nodes = tyn_depth_bounds_level_nodes(columns, level);
+    if (row < rows) {
+      for (int j = int(lane); j < nodes; j += int(lanes)) {
+        vec2 left = imageLoad(depth_bounds_texels, ivec2(below + 2 * j, row)).xy;
+        vec2 right = 2 * j + 1 < nodes_below ? imageLoad(depth_bounds_texels, ivec2(below + 2 * j + 1, row)).xy
+                                             : tyn_depth_bounds_empty();
+        imageStore(depth_bounds_texels, ivec2(offset + j, row), vec4(tyn_depth_bounds_merge(left, right), 0.0, 0.0));
+      }
+    }
+    memoryBarrierImage();
+    barrier();
+    below = offset;
+    nodes_below = nodes;
+  }
+}
+
 void main() {
   uint lane = gl_LocalInvocationID.x;
   uint lanes = gl_WorkGroupSize.x;
   uint row = gl_WorkGroupID.y * gl_WorkGroupSize.y + gl_LocalInvocationID.y;
   uint columns = pf.map.x;
   uint rows = pf.map.y;
+  // The layer after the prefix sums' (set, slot) layers: the trees (uniform per workgroup).
+  if (gl_WorkGroupID.z == pf.options.z * TYN_PF_SLOTS) {
+    tyn_pf_build_bounds_tree(lane, lanes, row, rows);
+    return;
+  }
   if (row >= rows) return;
   uint slot = gl_WorkGroupID.z % TYN_PF_SLOTS;
   uint set = gl_WorkGroupID.z / TYN_PF_SLOTS;

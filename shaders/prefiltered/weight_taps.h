@@ -124,6 +124,17 @@ TYN_FUNC float tyn_weight_tap_u_projective(ProjectiveRectificationParams proj, f
   return xf * (x - xn) / ((xf - xn) * max(x, 1.0e-30f));
 }
 
+// The inverses: the reference distance τ at which a row is read at u (trimmed segments end at
+// column edges, depth_bounds.h).
+TYN_FUNC float tyn_weight_tap_tau_nonlinear(float u, float reference_sin, float r_max) {
+  return u * r_max / reference_sin;
+}
+
+TYN_FUNC float tyn_weight_tap_tau_projective(ProjectiveRectificationParams proj, float u, float reference_sin,
+                                             float eta) {
+  return tyn_projective_x(proj, u) * sqrt(1.0f + eta * eta) / reference_sin;
+}
+
 TYN_END
 
 #endif

@@ -236,6 +236,12 @@ struct PrefilteredSettings {
   /// in front of it (or none) gets visibility 0 (or 1) exactly instead of the reconstruction, whose
   /// bounds leave doubt there (a closed room's roof over every ray; docs/PREFILTERED.md). Default true.
   bool depthBounds = true;
+  /// Trimmed segments (with depthBounds and the segmented reconstruction): each row's min/max tree
+  /// beside its texels (about as many texels again) finds the runs at both ends of a segment that
+  /// lie wholly in front of the ray or behind it; they count exactly (with the ray's own weights)
+  /// and only the columns between them are reconstructed (a ray leaving a roof's shadow into a
+  /// window's beam; docs/PREFILTERED.md "Trimmed segments"). Default true.
+  bool trimmedSegments = true;
 };
 
 const char* to_string(Profile profile) noexcept;

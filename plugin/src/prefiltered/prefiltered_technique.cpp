@@ -7,6 +7,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "epipolar/epipolar_geometry.h"
+#include "prefiltered/depth_bounds.h"
 #include "prefiltered/rectification_setup.h"
 #include "prefiltered/weight_taps.h"
 #include "tyndall_shaders.h"
@@ -268,8 +269,16 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, const MapKey& key, std:
     outcome = createImageArray(gpu, s.b, extent, 1, kMapUsage, fresh.rectifiedB);
     if (outcome) outcome = createImageArray(gpu, s.b, extent, key.sets, kMapUsage, fresh.prefixB);
   }
-  for (OwnedImage* bounds : {&fresh.depthBoundsTexels, &fresh.depthBoundsPrefix}) {
-    if (outcome) outcome = createImage(gpu, kDepthBoundsFormat, boundsExtent, VK_IMAGE_USAGE_STORAGE_BIT, *bounds);
+  // The texel image also holds each row's min/max tree beside its texels (depth_bounds.h).
+  const VkExtent2D treeExtent =
+      key.depthBounds
+          ? VkExtent2D{static_cast<std::uint32_t>(gpu::tyn_depth_bounds_tree_width(static_cast<int>(key.columns))), key.rows}
+          : VkExtent2D{1, 1};
+  if (outcome) {
+    outcome = createImage(gpu, kDepthBoundsFormat, treeExtent, VK_IMAGE_USAGE_STORAGE_BIT, fresh.depthBoundsTexels);
+  }
+  if (outcome) {
+    outcome = createImage(gpu, kDepthBoundsFormat, boundsExtent, VK_IMAGE_USAGE_STORAGE_BIT, fresh.depthBoundsPrefix);
   }
   if (!outcome) {
     destroyMaps(gpu, fresh);
@@ -380,7 +389,8 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   k.map = glm::uvec4(settings.columns, settings.rows, projective ? 1u : 0u, !projective && rect.fullCircle ? 1u : 0u);
   k.options = glm::uvec4(settings.filteredResampling ? 1u : 0u, static_cast<std::uint32_t>(settings.spacing), sets, mapSize);
   const bool segmented = settings.segmentedReconstruction && settings.rayWeightTaps > 1;
-  k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, segmented ? 1u : 0u, 0u);
+  const bool trimmed = segmented && settings.depthBounds && settings.trimmedSegments;
+  k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, segmented ? 1u : 0u, trimmed ? 1u : 0u);
   k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation,
                        settings.depthBounds ? 1.0f : 0.0f, 0.0f, 0.0f);
 
@@ -395,12 +405,14 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   plan_.filtered = settings.filteredResampling;
   plan_.threadPerRow = settings.prefixSums == PrefixSumScheme::ThreadPerRow;
   plan_.epipoleBlock = blockOnScreen;
+  plan_.boundsTree = trimmed;
 
   note += std::string("; ") + storage.name + ", " + std::to_string(settings.rows) + " rows x " +
           std::to_string(settings.columns) + " columns, " + rectNote + ", " + extinctionNote +
           (settings.filteredResampling ? ", filtered resampling" : ", nearest resampling") +
           (settings.depthBounds ? ", row depth bounds" : "") +
           (segmented ? ", segmented reconstruction (" + std::to_string(settings.rayWeightTaps) + " segments)" : "") +
+          (trimmed ? ", trimmed segments" : "") +
           (blockOnScreen ? ", epipole block " + std::to_string(settings.epipoleBlockPixels) + " px ray-marched" : "");
   return {};
 }
@@ -490,7 +502,9 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
   const VkPipeline prefix = plan_.threadPerRow ? threadPerRowPipelines_[plan_.basis] : rowParallelPipelines_[plan_.basis];
   const std::uint32_t rowsPerGroup = plan_.threadPerRow ? gpu::TYN_PF_THREAD_PER_ROW_GROUP : gpu::TYN_PF_ROWS_PER_GROUP;
   pass("prefiltered_prefix_sums", prefix, [&] {
-    gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup), plan_.sets * slotsOf(storage));
+    // One more layer builds the rows' min/max trees for the trimmed segments (prefix_sums.glsl).
+    gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup),
+                         plan_.sets * slotsOf(storage) + (plan_.boundsTree ? 1u : 0u));
   });
   pass("prefiltered_evaluate", evaluatePipelines_[plan_.basis], [&] {
     gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),

@@ -68,7 +68,9 @@ class PrefilteredTechnique {
     OwnedImage rectifiedB;  // columns × rows, image B of the two-image variants
     OwnedImage prefixA;     // columns × rows, layers of A × prefix-sum sets
     OwnedImage prefixB;
-    OwnedImage depthBoundsTexels;  // columns × rows (RG16_UNORM), 1 × 1 without the row depth bounds
+    // The texels and their rows' min/max trees, tyn_depth_bounds_tree_width(columns) × rows
+    // (RG16_UNORM), 1 × 1 without the row depth bounds.
+    OwnedImage depthBoundsTexels;
     OwnedImage depthBoundsPrefix;
     MapKey key;
   };
@@ -104,6 +106,7 @@ class PrefilteredTechnique {
     bool filtered = false;
     bool threadPerRow = false;
     bool epipoleBlock = false;
+    bool boundsTree = false;  // trimmed segments: the prefix-sum pass also builds the min/max trees
   } plan_;
 };
 

@@ -130,7 +130,7 @@ TYN_FUNC int tyn_depth_bounds_run_end(ivec3 rows_columns, int first, int last, f
   uint levels = tyn_depth_bounds_levels(columns);
   int i = first;
   uint level = 0u;
-  // Each node is visited once on the way up and once on the way down: 2 levels nodes at most.
+  // A search climbs, then descends, at most once through the levels: about 2 nodes per level.
   for (uint step = 0u; step < 4u * TYN_DEPTH_BOUNDS_MAX_LEVELS; ++step) {
     if ((i << level) > last || i >= tyn_depth_bounds_level_nodes(columns, level)) return last + 1;
     if (tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, level, i), depth_ray) == side) {

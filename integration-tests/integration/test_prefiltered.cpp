@@ -439,8 +439,8 @@ TEST(Prefiltered, RowDepthBoundsRemoveTheLeaks) {
 // Segmented reconstruction (weight_taps.h tyn_segment_coefficients): each of the 4 segments between
 // the lookups reconstructed on its own. Measured off -> on with the default 512 x 2048 map
 // (docs/PREFILTERED.md), trimmed segments (the default) included: moments6_64 pillars 5.26 ->
-// 1.03%, window-room 86.4 -> 15.3%, forest 5.95 -> 3.91%. Asserted: the segments at least halve pillars' and window-room's errors and do not
-// worsen forest's for these two variants, and the note says when they run (not with one lookup).
+// 1.03%, window-room 86.4 -> 15.3%, forest 5.95 -> 3.91%. Asserted: the segments at least halve
+// pillars' and window-room's errors and do not worsen forest's for these two variants, and the note says when they run (not with one lookup).
 TEST(Prefiltered, SegmentedReconstructionLowersTheError) {
   for (const char* name : {"pillars", "window-room", "forest"}) {
     const host::Scene scene = loadTestScene(name);

@@ -97,18 +97,19 @@ TYN_FUNC int tyn_depth_bounds_level_nodes(int columns, uint level) {
   return (columns + (1 << level) - 1) >> level;
 }
 
-// Levels of a row's tree, down to one node (1 for one column).
+// Levels of a row's tree, down to one node: 1 + ⌈log2 N⌉ (1 for one column).
 TYN_FUNC uint tyn_depth_bounds_levels(int columns) {
-  uint levels = 1u;
-  while (tyn_depth_bounds_level_nodes(columns, levels - 1u) > 1) levels += 1u;
-  return levels;
+  return columns > 1 ? uint(findMSB(columns - 1)) + 2u : 1u;
 }
 
-// x of the first node of `level`.
+// x of the first node of `level`: Σ_{j<l} ⌈N/2^j⌉ in closed form, since every search reads it for
+// every node it visits. With M = N − 1, ⌈N/2^j⌉ = ⌊M/2^j⌋ + 1, and Σ_{j≥0} ⌊M/2^j⌋ = 2M − popcount(M)
+// (Legendre), so the first l terms are that sum less the same sum for ⌊M/2^l⌋ (the test checks it
+// against the levels' node counts).
 TYN_FUNC int tyn_depth_bounds_level_offset(int columns, uint level) {
-  int offset = 0;
-  for (uint l = 0u; l < level; ++l) offset += tyn_depth_bounds_level_nodes(columns, l);
-  return offset;
+  int m = columns - 1;
+  int rest = m >> level;
+  return int(level) + (2 * m - bitCount(m)) - (2 * rest - bitCount(rest));
 }
 
 // Width of the image holding a row's whole tree (< 2N + levels).

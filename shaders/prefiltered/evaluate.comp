@@ -10,8 +10,8 @@
 // row's prefix sums to the pixel's own ray (weight_taps.h). Segmented reconstruction (the default)
 // reconstructs each of the K segments between the taps from the difference of two lookups and
 // averages the K visibilities; trimmed segments (the default with the row depth bounds) reconstruct
-// only the columns between the runs at a segment's two ends that the row decides; otherwise the reconstruction runs once, on the combined
-// representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
+// only the columns between the runs at a segment's two ends that the row decides; otherwise the
+// reconstruction runs once, on the combined representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
 // The storage variant is a specialisation constant: this pass only samples, so it needs no format qualifier.
 #extension GL_GOOGLE_include_directive : require
 
@@ -89,6 +89,22 @@ float tyn_pf_visibility(uint set, TynPfTaps taps, float depth_ray, float beta) {
   return 1.0 - tyn_shadow_intensity(bounds, beta);
 }
 
+// The visibility of the columns between u_a and u_b of a row (before tyn_prefix_lookup_u's shift;
+// the reference's weights w_a, w_b there): the difference of the two lookups
+// (tyn_segment_coefficients), reconstructed. w_a = 0 (the ray's start) reads u_b alone.
+float tyn_pf_part_visibility(uint set, float v, float columns, float u_a, float u_b, float w_a, float w_b,
+                             float depth_ray, float beta) {
+  vec2 c = tyn_segment_coefficients(w_a, w_b);
+  TynPfTaps part;
+  part.v = v;
+  part.count = c.y == 0.0 ? 1u : 2u;
+  part.u[0] = tyn_prefix_lookup_u(u_b, columns);
+  part.c[0] = c.x;
+  part.u[1] = tyn_prefix_lookup_u(u_a, columns);
+  part.c[1] = c.y;
+  return tyn_pf_visibility(set, part, depth_ray, beta);
+}
+
 // The reference distance τ at which the row is read at u (the inverse of tyn_weight_tap_u_*).
 float tyn_pf_tap_tau(float u, float reference_sin, float eta) {
   return tyn_pf_projective() ? tyn_weight_tap_tau_projective(pf.projective, u, reference_sin, eta)
@@ -129,15 +145,7 @@ float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float u_lo, 
   float w_p = p == c_lo ? w_lo : tyn_prefix_weight(sigma, tau_p);
   float w_q = q == c_hi ? w_hi : tyn_prefix_weight(sigma, tau_q);
   if (q >= p && w_q > w_p) {
-    vec2 c = tyn_segment_coefficients(w_p, w_q);
-    TynPfTaps middle;
-    middle.v = v;
-    middle.count = c.y == 0.0 ? 1u : 2u;
-    middle.u[0] = tyn_prefix_lookup_u(u_q, n);
-    middle.c[0] = c.x;
-    middle.u[1] = tyn_prefix_lookup_u(u_p, n);
-    middle.c[1] = c.y;
-    lit += tyn_pf_visibility(set, middle, depth_ray, beta) * (own_q - own_p);
+    lit += tyn_pf_part_visibility(set, v, n, u_p, u_q, w_p, w_q, depth_ray, beta) * (own_q - own_p);
   }
   return own_hi > own_lo ? lit / (own_hi - own_lo) : side_a;
 }
@@ -202,11 +210,11 @@ void main() {
                  : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
                                        : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
       tap_w[k] = tyn_prefix_weight(sigma, tau);
-      taps.u[k] = tyn_prefix_lookup_u(tap_u[k], columns);
     }
     if (!segmented) {
       float sum = 0.0;
       for (uint k = 0u; k < tap_count; ++k) {
+        taps.u[k] = tyn_prefix_lookup_u(tap_u[k], columns);
         taps.c[k] = tyn_weight_tap(sigma, kappa, tau_end, k + 1u, tap_count).y;
         sum += taps.c[k];
       }
@@ -235,15 +243,8 @@ void main() {
         visible += segment_verdict;
         continue;
       }
-      vec2 c = tyn_segment_coefficients(k == 0u ? 0.0 : tap_w[k - 1u], tap_w[k]);
-      TynPfTaps segment;
-      segment.v = v;
-      segment.count = c.y == 0.0 ? 1u : 2u;
-      segment.u[0] = taps.u[k];
-      segment.c[0] = c.x;
-      segment.u[1] = k == 0u ? 0.0 : taps.u[k - 1u];
-      segment.c[1] = c.y;
-      visible += tyn_pf_visibility(set, segment, depth_ray, beta);
+      visible += tyn_pf_part_visibility(set, v, columns, k == 0u ? 0.0 : tap_u[k - 1u], tap_u[k],
+                                        k == 0u ? 0.0 : tap_w[k - 1u], tap_w[k], depth_ray, beta);
     }
     set_visibility[set] = visible / float(tap_count);
   }

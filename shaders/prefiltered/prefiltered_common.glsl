@@ -94,8 +94,6 @@ float tyn_pf_lookup_v(float v) {
 // pf.bounds.y: the row depth bounds are built and read (PrefilteredSettings::depthBounds).
 bool tyn_pf_depth_bounds() { return pf.bounds.y != 0.0; }
 
-// The verdict of the row's occluders on a whole view ray ending at (u, v) with rectified depth
-// depth_ray: 0 in shadow, 1 lit, −1 for the reconstruction (depth_bounds.h).
 // A node of the min/max tree of the two rows (row0, row1, N) a lookup reads (depth_bounds.h).
 vec2 tyn_depth_bounds_node(ivec3 rows_columns, uint level, int index) {
   int x = tyn_depth_bounds_level_offset(rows_columns.z, level) + index;
@@ -103,6 +101,8 @@ vec2 tyn_depth_bounds_node(ivec3 rows_columns, uint level, int index) {
                                 imageLoad(depth_bounds_texels, ivec2(x, rows_columns.y)).xy);
 }
 
+// The verdict of the row's occluders on a whole view ray ending at (u, v) with rectified depth
+// depth_ray: 0 in shadow, 1 lit, −1 for the reconstruction (depth_bounds.h).
 float tyn_pf_depth_bounds_verdict(float u, float v, float depth_ray) {
   ivec3 t = tyn_depth_bounds_texels(u, v, int(pf.map.x), int(pf.map.y), pf.map.w != 0u);
   vec2 bounds = tyn_depth_bounds_merge(imageLoad(depth_bounds_prefix, t.xy).xy,

@@ -85,9 +85,9 @@ constexpr const char* kIndoorLeak =
     "cannot tell from the ray's own depth (the 4-moment variants meet their bar here)";
 
 const MissedBar kMissedBars[] = {
-    {"window-room", PrefilteredBasis::Moments6_64, 0.16, kIndoorLeak},
-    {"window-room", PrefilteredBasis::Moments6_96, 0.066, kIndoorLeak},
-    {"window-room", PrefilteredBasis::Moments6_192, 0.063, kIndoorLeak},
+    {"window-room", PrefilteredBasis::Moments6_64, 0.151, kIndoorLeak},
+    {"window-room", PrefilteredBasis::Moments6_96, 0.058, kIndoorLeak},
+    {"window-room", PrefilteredBasis::Moments6_192, 0.055, kIndoorLeak},
 };
 
 const MissedBar* missedBar(const std::string& scene, PrefilteredBasis basis) {
@@ -438,8 +438,8 @@ TEST(Prefiltered, RowDepthBoundsRemoveTheLeaks) {
 
 // Segmented reconstruction (weight_taps.h tyn_segment_coefficients): each of the 4 segments between
 // the lookups reconstructed on its own. Measured off -> on with the default 512 x 2048 map
-// (docs/PREFILTERED.md), trimmed segments (the default) included: moments6_64 pillars 5.26 ->
-// 1.03%, window-room 86.4 -> 15.3%, forest 5.95 -> 3.91%. Asserted: the segments at least halve
+// (docs/PREFILTERED.md), trimmed segments and short rays (the defaults) included: moments6_64
+// pillars 5.26 -> 1.03%, window-room 83.3 -> 15.0%, forest 5.75 -> 3.75%. Asserted: the segments at least halve
 // pillars' and window-room's errors and do not worsen forest's for these two variants, and the note says when they run (not with one lookup).
 TEST(Prefiltered, SegmentedReconstructionLowersTheError) {
   for (const char* name : {"pillars", "window-room", "forest"}) {
@@ -467,8 +467,8 @@ TEST(Prefiltered, SegmentedReconstructionLowersTheError) {
 // Trimmed segments (depth_bounds.h tyn_depth_bounds_run_end / run_begin): the runs at both ends of a
 // segment that the row's min/max tree decides count exactly, with the ray's own weights, and only
 // the columns between them are reconstructed. Measured off -> on (docs/PREFILTERED.md "Trimmed
-// segments", 320x180): moments6_64 window-room 40.3 -> 15.3%, pillars 2.27 -> 1.03%, forest
-// 4.34 -> 3.91%. Asserted: no case gets worse, window-room's error at least halves, and the note
+// segments", 320x180, short rays on): moments6_64 window-room 39.7 -> 15.0%, pillars 2.27 -> 1.03%,
+// forest 4.00 -> 3.75%. Asserted: no case gets worse, window-room's error at least halves, and the note
 // says when they run (not without the segments).
 TEST(Prefiltered, TrimmedSegmentsLowerTheError) {
   for (const char* name : {"window-room", "pillars", "forest"}) {
@@ -487,6 +487,44 @@ TEST(Prefiltered, TrimmedSegmentsLowerTheError) {
   const Comparison c = compare("pillars", loadTestScene("pillars"), unsegmented);
   EXPECT_EQ(c.result.stats.techniqueNote.find("trimmed segments"), std::string::npos)
       << "only segments are trimmed";
+  expectNoValidationMessages();
+}
+
+// Short rays (PrefilteredSettings::shortRayColumns): next to the epipole a view ray runs almost
+// along the light and crosses a few texels of its row, too few for any reconstruction; those rays
+// take the Reference's walk. The epipole block is a number of pixels, so it covers a smaller angle
+// as the output grows; the short rays are chosen in texels, which the output size does not change.
+// window-room (the epipole just above the screen, a closed room whose rays next to it are all in
+// shadow), moments4_64, measured (docs/PREFILTERED.md "Short rays"): with the 16-px block alone
+// 7.69% at 320x180 and 17.37% at 640x360; with short rays 7.05% and 7.00%. Asserted: with short
+// rays the error at 640x360 stays within 10% of 320x180's, without them it is more than 1.5 times
+// as large, and the note says when they run.
+TEST(Prefiltered, ShortRaysHoldTheErrorAtEveryOutputSize) {
+  const host::Scene scene = loadTestScene("window-room");
+  PrefilteredSettings on;
+  on.basis = PrefilteredBasis::Moments4_64;
+  PrefilteredSettings off = on;
+  off.shortRayColumns = 0;
+  auto error = [&](std::uint32_t width, std::uint32_t height, const PrefilteredSettings& settings) {
+    samples::RenderOptions ref = options(Technique::Reference);
+    samples::RenderOptions pf = options(Technique::Prefiltered, settings);
+    ref.width = pf.width = width;
+    ref.height = pf.height = height;
+    const samples::RenderResult r = renderWithSharedContext(scene, pf);
+    const ErrorStats stats = compareRgb(r.scattering, renderWithSharedContext(scene, ref).scattering);
+    EXPECT_EQ(stats.nonFinite, 0u);
+    EXPECT_EQ(r.stats.techniqueNote.find("rays within 16 columns ray-marched") != std::string::npos,
+              settings.shortRayColumns == 16)
+        << r.stats.techniqueNote;
+    return stats.relativeRmse;
+  };
+  const double small = error(kWidth, kHeight, on);
+  const double large = error(2 * kWidth, 2 * kHeight, on);
+  const double largeOff = error(2 * kWidth, 2 * kHeight, off);
+  std::printf("[ window-room ] moments4_64 short rays: %ux%u %.2f%%, %ux%u %.2f%% (off: %.2f%%)\n", kWidth, kHeight,
+              small * 100.0, 2 * kWidth, 2 * kHeight, large * 100.0, largeOff * 100.0);
+  EXPECT_LE(large, 1.1 * small);
+  EXPECT_GT(largeOff, 1.5 * large);
   expectNoValidationMessages();
 }
 
@@ -565,6 +603,7 @@ TEST(Prefiltered, EachBadSettingRecordsNothingAndNamesTheField) {
       {"prefiltered.overestimation", [](PrefilteredSettings& s) { s.overestimation = -0.1f; }},
       {"prefiltered.overestimation", [](PrefilteredSettings& s) { s.overestimation = NAN; }},
       {"prefiltered.epipoleBlockPixels", [](PrefilteredSettings& s) { s.epipoleBlockPixels = 257; }},
+      {"prefiltered.shortRayColumns", [](PrefilteredSettings& s) { s.shortRayColumns = s.columns + 1; }},
   };
   for (const BadSetting& bad : cases) {
     SCOPED_TRACE(bad.field);
@@ -645,7 +684,8 @@ TEST(Prefiltered, CommandLineSettings) {
   std::string error;
   ASSERT_TRUE(parse({"scene.json", "--technique", "prefiltered", "--prefiltered",
                      "basis=fourier32,rectification=projective,rows=64,columns=128,filtered=0,spacing=mean-theta,"
-                     "taps=1,prefix-sums=thread-per-row,beta=0.25,epipole-block=0,depth-bounds=0,segments=0,trim=0"},
+                     "taps=1,prefix-sums=thread-per-row,beta=0.25,epipole-block=0,short-rays=5,depth-bounds=0,segments=0,"
+                     "trim=0"},
                     o, error))
       << error;
   EXPECT_EQ(o.technique, Technique::Prefiltered);
@@ -662,6 +702,7 @@ TEST(Prefiltered, CommandLineSettings) {
   EXPECT_FALSE(s.adaptiveOverestimation);
   EXPECT_EQ(s.overestimation, 0.25f);
   EXPECT_EQ(s.epipoleBlockPixels, 0u);
+  EXPECT_EQ(s.shortRayColumns, 5u);
   EXPECT_FALSE(s.depthBounds);
   EXPECT_FALSE(s.segmentedReconstruction);
   EXPECT_FALSE(s.trimmedSegments);

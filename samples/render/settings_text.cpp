@@ -97,7 +97,7 @@ const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "
     "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row), "
-    "beta (adaptive|a number in [0, 1]), epipole-block, depth-bounds (0|1), segments (0|1), trim (0|1)";
+    "beta (adaptive|a number in [0, 1]), epipole-block, short-rays, depth-bounds (0|1), segments (0|1), trim (0|1)";
 
 bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
   std::uint32_t value = 0;
@@ -170,6 +170,8 @@ bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out,
       parsed = s.adaptiveOverestimation || parseFloat(value, s.overestimation);
     } else if (key == "epipole-block") {
       parsed = parseUint(value, 0, 1u << 30, s.epipoleBlockPixels);
+    } else if (key == "short-rays") {
+      parsed = parseUint(value, 0, 1u << 30, s.shortRayColumns);
     } else if (key == "depth-bounds") {
       parsed = parseUint(value, 0, 1, u);
       s.depthBounds = u != 0;
@@ -226,6 +228,7 @@ std::string describe(const PrefilteredSettings& s) {
     append(out, "beta", floatText(s.overestimation));
   }
   if (s.epipoleBlockPixels != d.epipoleBlockPixels) append(out, "epipole-block", std::to_string(s.epipoleBlockPixels));
+  if (s.shortRayColumns != d.shortRayColumns) append(out, "short-rays", std::to_string(s.shortRayColumns));
   if (s.depthBounds != d.depthBounds) append(out, "depth-bounds", s.depthBounds ? "1" : "0");
   if (s.segmentedReconstruction != d.segmentedReconstruction) {
     append(out, "segments", s.segmentedReconstruction ? "1" : "0");

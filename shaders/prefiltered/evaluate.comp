@@ -19,6 +19,7 @@
 #include "prefiltered/moments.h"
 #include "prefiltered/weight_taps.h"
 #include "common/medium.glsl"
+#include "reference/reference_march.glsl"
 
 layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
 
@@ -167,6 +168,13 @@ void main() {
     uvd = tyn_rectified_texcoord(pf.nonlinear, tyn_rectified_from_view_ray(pf.nonlinear, ray.direction, s));
   }
   float columns = float(pf.map.x);
+  // Short rays (PrefilteredSettings::shortRayColumns): a ray ending within the first few columns
+  // of its row is a handful of texels of the rectified map, too few for the reconstruction; its
+  // stretch across the host's map is as short, so it takes the Reference's walk instead.
+  if (uvd.x * columns < float(pf.short_rays.x)) {
+    imageStore(out_scattering, ivec2(pixel), vec4(tyn_reference_in_scattering(ray.origin, ray.direction, s), 0.0));
+    return;
+  }
   float v = tyn_pf_lookup_v(uvd.y);
   float depth_ray = clamp(uvd.z, 0.0, 1.0);
 

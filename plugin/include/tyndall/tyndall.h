@@ -231,6 +231,13 @@ struct PrefilteredSettings {
   /// shafts converge when it is behind the camera) that is ray-marched per pixel with the
   /// Reference's walk instead (klehm2014 Fig. 8). 0..256, default 16; 0 turns the block off.
   std::uint32_t epipoleBlockPixels = 16;
+  /// Short rays: a view ray that ends within the first `shortRayColumns` columns of its rectified
+  /// row crosses too few texels for any reconstruction (next to the epipole, where a ray runs
+  /// almost along the light, and in front of a surface close to the camera) and is ray-marched
+  /// with the Reference's walk instead; its stretch across the host's map is as short, so the walk
+  /// is too. A criterion in texels, not pixels, so it holds at every output size
+  /// (docs/PREFILTERED.md "Short rays"). 0..columns, default 16; 0 turns it off.
+  std::uint32_t shortRayColumns = 16;
   /// Row depth bounds: the running min and max of the occluder depths along each rectified row
   /// (RG16_UNORM, 4 bytes per texel, two maps), so that a view ray whose row holds only occluders
   /// in front of it (or none) gets visibility 0 (or 1) exactly instead of the reconstruction, whose

@@ -23,7 +23,7 @@ static_assert(static_cast<std::uint32_t>(PrefilteredBasis::Fourier32) == gpu::TY
 static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::MeanTheta) == gpu::TYN_PF_SPACING_MEAN_THETA);
 static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::ReferenceRay) == gpu::TYN_PF_SPACING_REFERENCE_RAY);
 static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::FastestRay) == gpu::TYN_PF_SPACING_FASTEST_RAY);
-static_assert(sizeof(gpu::PrefilteredConstants) == 9 * 16 + (64 + 2 * 16) + 7 * 16,
+static_assert(sizeof(gpu::PrefilteredConstants) == 9 * 16 + (64 + 2 * 16) + 8 * 16,
               "PrefilteredConstants must match its std140 layout");
 static_assert(sizeof(gpu::PrefilteredFixupArgs) == 32);
 
@@ -129,6 +129,7 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
   }
   if (!(s.overestimation >= 0.0f && s.overestimation <= 1.0f)) return invalid("prefiltered.overestimation must be in [0, 1]");
   if (s.epipoleBlockPixels > 256) return invalid("prefiltered.epipoleBlockPixels must be in 0..256");
+  if (s.shortRayColumns > s.columns) return invalid("prefiltered.shortRayColumns must be in 0..columns");
   return {};
 }
 
@@ -393,6 +394,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, segmented ? 1u : 0u, trimmed ? 1u : 0u);
   k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation,
                        settings.depthBounds ? 1.0f : 0.0f, 0.0f, 0.0f);
+  k.short_rays = glm::uvec4(settings.shortRayColumns, 0u, 0u, 0u);
 
   const MapKey key{basis, settings.columns, settings.rows, sets, settings.filteredResampling ? mapSize : 1u,
                    settings.depthBounds};
@@ -413,6 +415,9 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
           (settings.depthBounds ? ", row depth bounds" : "") +
           (segmented ? ", segmented reconstruction (" + std::to_string(settings.rayWeightTaps) + " segments)" : "") +
           (trimmed ? ", trimmed segments" : "") +
+          (settings.shortRayColumns > 0
+               ? ", rays within " + std::to_string(settings.shortRayColumns) + " columns ray-marched"
+               : "") +
           (blockOnScreen ? ", epipole block " + std::to_string(settings.epipoleBlockPixels) + " px ray-marched" : "");
   return {};
 }

@@ -201,4 +201,38 @@ TEST(DepthBounds, TreeSearchesFindTheRunsALinearScanFinds) {
   }
 }
 
+// The texel walk's visibility of one texel (tyn_two_depth_visibility): the weight of its two depths
+// at or beyond the ray's depth, as stored (16-bit UNORM, rectify.glsl), against the same count in
+// double precision; where the two depths alone decide it, the same answer as the texel's verdict.
+TEST(DepthBounds, TwoDepthVisibilityIsTheWeightNotInFront) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto stored = [](double x) { return static_cast<float>(std::round(x * 65535.0) / 65535.0); };
+  int partial = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const vec3 texel(stored(unit(rng)), stored(unit(rng)), stored(unit(rng)));
+    // Rays at random depths, at either stored depth exactly (an occluder at the ray's own depth
+    // does not shadow it: tyn_depth_bounds_verdict's convention) and just in front of them.
+    const float rays[] = {static_cast<float>(unit(rng)), texel.x, texel.y, std::nextafter(texel.x, 0.0f),
+                          std::nextafter(texel.y, 0.0f)};
+    for (float depthRay : rays) {
+      const double w2 = texel.z;
+      const double expected = (1.0 - w2) * (double(texel.x) >= depthRay ? 1.0 : 0.0) +
+                              w2 * (double(texel.y) >= depthRay ? 1.0 : 0.0);
+      const float visibility = tyn_two_depth_visibility(texel, depthRay);
+      ASSERT_NEAR(visibility, expected, 1e-6);
+      const float verdict = tyn_depth_bounds_verdict(vec2(std::min(texel.x, texel.y), std::max(texel.x, texel.y)), depthRay);
+      if (verdict >= 0.0f) {
+        ASSERT_EQ(visibility, verdict);
+      } else {
+        ++partial;
+      }
+    }
+  }
+  EXPECT_GT(partial, 10000) << "too few rays between the two depths to test the weights";
+  // One depth (nearest resampling stores (z, 1, 0)): lit exactly when z is not in front.
+  EXPECT_EQ(tyn_two_depth_visibility(vec3(0.5f, 1.0f, 0.0f), 0.5f), 1.0f);
+  EXPECT_EQ(tyn_two_depth_visibility(vec3(0.5f, 1.0f, 0.0f), 0.6f), 0.0f);
+}
+
 }  // namespace

@@ -59,10 +59,12 @@ TEST(SettingsText, EveryPrefilteredFieldRoundTrips) {
   s.depthBounds = false;
   s.segmentedReconstruction = false;
   s.trimmedSegments = false;
+  s.texelWalkSteps = 3;
   const std::string text = describe(s);
   EXPECT_EQ(text,
             "basis=fourier32,rectification=projective,rows=256,columns=256,filtered=0,spacing=mean-theta,taps=1,"
-            "prefix-sums=thread-per-row,beta=0.25,epipole-block=0,short-rays=5,depth-bounds=0,segments=0,trim=0");
+            "prefix-sums=thread-per-row,beta=0.25,epipole-block=0,short-rays=5,depth-bounds=0,segments=0,trim=0,"
+            "texel-walk=3");
   PrefilteredSettings back;
   std::string error;
   ASSERT_TRUE(parsePrefilteredSettings(text, back, error)) << error;

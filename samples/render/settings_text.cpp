@@ -97,7 +97,8 @@ const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "
     "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row), "
-    "beta (adaptive|a number in [0, 1]), epipole-block, short-rays, depth-bounds (0|1), segments (0|1), trim (0|1)";
+    "beta (adaptive|a number in [0, 1]), epipole-block, short-rays, depth-bounds (0|1), segments (0|1), trim (0|1), "
+    "texel-walk";
 
 bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
   std::uint32_t value = 0;
@@ -172,6 +173,8 @@ bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out,
       parsed = parseUint(value, 0, 1u << 30, s.epipoleBlockPixels);
     } else if (key == "short-rays") {
       parsed = parseUint(value, 0, 1u << 30, s.shortRayColumns);
+    } else if (key == "texel-walk") {
+      parsed = parseUint(value, 0, 1u << 30, s.texelWalkSteps);
     } else if (key == "depth-bounds") {
       parsed = parseUint(value, 0, 1, u);
       s.depthBounds = u != 0;
@@ -234,6 +237,7 @@ std::string describe(const PrefilteredSettings& s) {
     append(out, "segments", s.segmentedReconstruction ? "1" : "0");
   }
   if (s.trimmedSegments != d.trimmedSegments) append(out, "trim", s.trimmedSegments ? "1" : "0");
+  if (s.texelWalkSteps != d.texelWalkSteps) append(out, "texel-walk", std::to_string(s.texelWalkSteps));
   return out.empty() ? "defaults" : out;
 }
 

@@ -176,6 +176,28 @@ TYN_FUNC int tyn_depth_bounds_run_begin(ivec3 rows_columns, int first, int last,
   return max(((i + 1) << level) - 1, first - 1);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Texel walk
+//
+// What a trimmed segment leaves between its two runs is reconstructed from the difference of two
+// lookups: the distribution of every occluder of those columns, which for a ray that crosses a
+// window beam is the wall's edge in front of it, the beam, and the other edge. The moments leave
+// doubt at both edges and β lets a share of it through. The row knows more: the runs inside the
+// middle are decided too, and an undecided texel is a distribution of two depths (the filtered
+// resampling's, Algorithm 2: the representation's own content), whose visibility at z_r is exact.
+// So the evaluation walks the middle from its start, a bounded number of steps: a decided run is
+// skipped with the tree search and counts 0 or 1, an undecided texel counts the share of its two
+// depths at or beyond z_r, both rows of the lookup interpolated as the bilinear lookup does. What
+// the steps do not reach is reconstructed as before.
+//
+// Storage: RGBA16_UNORM per rectified texel, (z1, z2, w2): the two rectified depths and the weight
+// of the second (w1 = 1 − w2). Without filtered resampling a texel has one depth: (z, 1, 0).
+
+// The visibility at `depth_ray` of one texel's two depths: the weight of those not in front.
+TYN_FUNC float tyn_two_depth_visibility(vec3 texel, float depth_ray) {
+  return (1.0f - texel.z) * (texel.x >= depth_ray ? 1.0f : 0.0f) + texel.z * (texel.y >= depth_ray ? 1.0f : 0.0f);
+}
+
 TYN_END
 
 #endif

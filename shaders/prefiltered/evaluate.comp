@@ -9,8 +9,9 @@
 // With rayWeightTaps > 1 the lookup is K lookups along the row whose combination re-weights the
 // row's prefix sums to the pixel's own ray (weight_taps.h). Segmented reconstruction (the default)
 // reconstructs each of the K segments between the taps from the difference of two lookups and
-// averages the K visibilities; trimmed segments (the default with the row depth bounds) reconstruct
-// only the columns between the runs at a segment's two ends that the row decides; otherwise the
+// averages the K visibilities; trimmed segments (the default with the row depth bounds) count the
+// runs at a segment's two ends that the row decides exactly and walk the columns between them
+// (the texel walk), reconstructing only what the walk does not reach; otherwise the
 // reconstruction runs once, on the combined representation. The transmittance T = e^{−σ_t s} is the composite's (exact per pixel).
 // The storage variant is a specialisation constant: this pass only samples, so it needs no format qualifier.
 #extension GL_GOOGLE_include_directive : require
@@ -112,43 +113,104 @@ float tyn_pf_tap_tau(float u, float reference_sin, float eta) {
                              : tyn_weight_tap_tau_nonlinear(u, reference_sin, pf.nonlinear.origin.w);
 }
 
-// Trimmed segment (depth_bounds.h): segment [u_lo, u_hi] of a row (reference weights w_lo, w_hi
-// at its ends) loses the run of texels at each end that the row decides on its own; the runs count
-// 0 or 1 with the pixel's own weights (rate σκ along τ) and only the columns between them are
-// reconstructed, from the difference of the lookups at their edges. Returns the segment's
-// visibility.
-float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float u_lo, float u_hi, float w_lo, float w_hi,
-                             float depth_ray, float beta, float sigma, float kappa, float reference_sin, float eta) {
+// The visibility of column `column` of the lookup's two rows (rows_columns.xy) at depth_ray,
+// interpolated between the rows by `row_fraction` as the bilinear lookup does: each row's verdict
+// where its texel bounds give one, else the share of its two depths (depth_bounds.h "Texel walk").
+float tyn_pf_texel_visibility(ivec3 rows_columns, float row_fraction, int column, float depth_ray) {
+  float row_visibility[2];
+  for (int r = 0; r < 2; ++r) {
+    ivec2 texel = ivec2(column, r == 0 ? rows_columns.x : rows_columns.y);
+    float verdict = tyn_depth_bounds_verdict(imageLoad(depth_bounds_texels, texel).xy, depth_ray);
+    row_visibility[r] = verdict >= 0.0 ? verdict : tyn_two_depth_visibility(imageLoad(texel_depths, texel).xyz, depth_ray);
+  }
+  return mix(row_visibility[0], row_visibility[1], row_fraction);
+}
+
+// One segment [u_lo, u_hi] of a row for the trimmed segments: its ends and weights, and the ray's
+// pace through it (the arguments every column edge's weight needs).
+struct TynPfSegment {
+  float u_lo;
+  float u_hi;
+  float w_lo;    // the reference's weight at u_lo (0 at the ray's start)
+  float w_hi;
+  float own_lo;  // the pixel's own weight there (rate σκ along τ)
+  float own_hi;
+  float sigma;
+  float own_rate;
+  float reference_sin;
+  float eta;
+};
+
+// The texture coordinate of the left edge of column i inside the segment, whose first and last
+// columns (c_lo, c_hi) it covers only from u_lo and up to u_hi.
+float tyn_pf_edge_u(TynPfSegment g, ivec2 c_lo_hi, int i, float n) {
+  return i <= c_lo_hi.x ? g.u_lo : i > c_lo_hi.y ? g.u_hi : float(i) / n;
+}
+
+// The pixel's own weight W(σκ, τ) up to u, and the reference's W(σ, τ) (the prefix sums'). The
+// segment's own ends keep their given weights: u = 0 is the ray's start, which the projective map
+// does not put at τ = 0.
+float tyn_pf_own_weight(TynPfSegment g, float u) {
+  if (u == g.u_lo) return g.own_lo;
+  if (u == g.u_hi) return g.own_hi;
+  return tyn_prefix_weight(g.own_rate, tyn_pf_tap_tau(u, g.reference_sin, g.eta));
+}
+
+float tyn_pf_reference_weight(TynPfSegment g, float u) {
+  if (u == g.u_lo) return g.w_lo;
+  if (u == g.u_hi) return g.w_hi;
+  return tyn_prefix_weight(g.sigma, tyn_pf_tap_tau(u, g.reference_sin, g.eta));
+}
+
+// Trimmed segment (depth_bounds.h): segment [u_lo, u_hi] of a row loses the run of texels at each
+// end that the row decides on its own; the runs count 0 or 1 with the pixel's own weights, and the
+// columns between them are walked for up to pf.walks.y steps (depth_bounds.h "Texel walk"); what
+// the walk does not reach is reconstructed from the difference of the lookups at its edges.
+// Returns the segment's visibility.
+float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float row_fraction, TynPfSegment g,
+                             float depth_ray, float beta) {
   int columns = rows_columns.z;
   float n = float(columns);
-  int c_lo = clamp(int(floor(u_lo * n)), 0, columns - 1);
-  int c_hi = clamp(int(floor(u_hi * n)), c_lo, columns - 1);
+  int c_lo = clamp(int(floor(g.u_lo * n)), 0, columns - 1);
+  int c_hi = clamp(int(floor(g.u_hi * n)), c_lo, columns - 1);
+  ivec2 c_lo_hi = ivec2(c_lo, c_hi);
   float side_a = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, c_lo), depth_ray);
   int p = side_a < 0.0 ? c_lo : tyn_depth_bounds_run_end(rows_columns, c_lo, c_hi, depth_ray, side_a);
   if (p > c_hi) return side_a;
   float side_b = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, c_hi), depth_ray);
   int q = side_b < 0.0 ? c_hi : tyn_depth_bounds_run_begin(rows_columns, p, c_hi, depth_ray, side_b);
-  // The runs end at column edges inside the segment.
-  float u_p = p == c_lo ? u_lo : float(p) / n;
-  float u_q = q == c_hi ? u_hi : float(q + 1) / n;
-  float tau_p = tyn_pf_tap_tau(u_p, reference_sin, eta);
-  float tau_q = tyn_pf_tap_tau(u_q, reference_sin, eta);
-  float tau_lo = tyn_pf_tap_tau(u_lo, reference_sin, eta);
-  float tau_hi = tyn_pf_tap_tau(u_hi, reference_sin, eta);
   // The pixel's own weight of each part: the runs are exact, so their share should be the ray's,
   // not the reference's (which, slower, gives the later part of a segment too much).
-  float own_rate = sigma * kappa;
-  float own_lo = u_lo > 0.0 ? tyn_prefix_weight(own_rate, tau_lo) : 0.0;
-  float own_hi = tyn_prefix_weight(own_rate, tau_hi);
-  float own_p = p == c_lo ? own_lo : tyn_prefix_weight(own_rate, tau_p);
-  float own_q = q == c_hi ? own_hi : tyn_prefix_weight(own_rate, tau_q);
-  float lit = max(side_a, 0.0) * (own_p - own_lo) + max(side_b, 0.0) * (own_hi - own_q);
-  float w_p = p == c_lo ? w_lo : tyn_prefix_weight(sigma, tau_p);
-  float w_q = q == c_hi ? w_hi : tyn_prefix_weight(sigma, tau_q);
-  if (q >= p && w_q > w_p) {
-    lit += tyn_pf_part_visibility(set, v, n, u_p, u_q, w_p, w_q, depth_ray, beta) * (own_q - own_p);
+  float own_p = tyn_pf_own_weight(g, tyn_pf_edge_u(g, c_lo_hi, p, n));
+  float own_q = tyn_pf_own_weight(g, tyn_pf_edge_u(g, c_lo_hi, q + 1, n));
+  float lit = max(side_a, 0.0) * (own_p - g.own_lo) + max(side_b, 0.0) * (g.own_hi - own_q);
+  // The walk through the middle [p, q]: a step is a decided run or one undecided texel.
+  int first = p;
+  float own_first = own_p;
+  for (uint step = 0u; step < pf.walks.y && first <= q; ++step) {
+    float side = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, first), depth_ray);
+    int next = first + 1;
+    float visibility = side;
+    if (side >= 0.0) {
+      next = tyn_depth_bounds_run_end(rows_columns, first, q, depth_ray, side);
+    } else {
+      visibility = tyn_pf_texel_visibility(rows_columns, row_fraction, first, depth_ray);
+    }
+    float own_next = next > q ? own_q : tyn_pf_own_weight(g, tyn_pf_edge_u(g, c_lo_hi, next, n));
+    lit += visibility * (own_next - own_first);
+    first = next;
+    own_first = own_next;
   }
-  return own_hi > own_lo ? lit / (own_hi - own_lo) : side_a;
+  if (first <= q) {
+    float u_first = tyn_pf_edge_u(g, c_lo_hi, first, n);
+    float u_q = tyn_pf_edge_u(g, c_lo_hi, q + 1, n);
+    float w_first = tyn_pf_reference_weight(g, u_first);
+    float w_q = tyn_pf_reference_weight(g, u_q);
+    if (w_q > w_first) {
+      lit += tyn_pf_part_visibility(set, v, n, u_first, u_q, w_first, w_q, depth_ray, beta) * (own_q - own_first);
+    }
+  }
+  return g.own_hi > g.own_lo ? lit / (g.own_hi - g.own_lo) : side_a;
 }
 
 void main() {
@@ -171,7 +233,7 @@ void main() {
   // Short rays (PrefilteredSettings::shortRayColumns): a ray ending within the first few columns
   // of its row is a handful of texels of the rectified map, too few for the reconstruction; its
   // stretch across the host's map is as short, so it takes the Reference's walk instead.
-  if (uvd.x * columns < float(pf.short_rays.x)) {
+  if (uvd.x * columns < float(pf.walks.x)) {
     imageStore(out_scattering, ivec2(pixel), vec4(tyn_reference_in_scattering(ray.origin, ray.direction, s), 0.0));
     return;
   }
@@ -237,13 +299,27 @@ void main() {
     // depth bounds at its end decide it when they can, whatever the segments after it hold.
     float visible = 0.0;
     bool trimmed = pf.fixup.w != 0u;
+    float row_fraction = fract(v * float(pf.map.y) - 0.5);  // the second row's share (tyn_depth_bounds_texels)
     ivec3 rows_columns = ivec3(tyn_depth_bounds_texels(uvd.x, v, int(pf.map.x), int(pf.map.y), pf.map.w != 0u).yz,
                                int(pf.map.x));
+    TynPfSegment segment;
+    segment.sigma = sigma;
+    segment.own_rate = sigma * kappa;
+    segment.reference_sin = reference_sin;
+    segment.eta = eta;
+    segment.u_hi = 0.0;
+    segment.w_hi = 0.0;
+    segment.own_hi = 0.0;
     for (uint k = 0u; k < tap_count; ++k) {
       if (trimmed) {
-        visible += tyn_pf_trimmed_segment(set, v, rows_columns, k == 0u ? 0.0 : tap_u[k - 1u], tap_u[k],
-                                          k == 0u ? 0.0 : tap_w[k - 1u], tap_w[k], depth_ray, beta, sigma, kappa,
-                                          reference_sin, eta);
+        // Segment k starts where segment k − 1 ended (the ray's start for the first).
+        segment.u_lo = segment.u_hi;
+        segment.w_lo = segment.w_hi;
+        segment.own_lo = segment.u_lo > 0.0 ? segment.own_hi : 0.0;
+        segment.u_hi = tap_u[k];
+        segment.w_hi = tap_w[k];
+        segment.own_hi = tyn_prefix_weight(segment.own_rate, tyn_pf_tap_tau(tap_u[k], reference_sin, eta));
+        visible += tyn_pf_trimmed_segment(set, v, rows_columns, row_fraction, segment, depth_ray, beta);
         continue;
       }
       float segment_verdict = tyn_pf_depth_bounds() ? tyn_pf_depth_bounds_verdict(tap_u[k], v, depth_ray) : -1.0;

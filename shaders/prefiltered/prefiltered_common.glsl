@@ -34,6 +34,10 @@ layout(set = 0, binding = 16, std430) buffer FixupBlock { PrefilteredFixupArgs f
 // evaluation). 1 × 1 placeholders when off.
 layout(set = 0, binding = 17, rg16) uniform coherent image2D depth_bounds_texels;
 layout(set = 0, binding = 18, rg16) uniform image2D depth_bounds_prefix;
+// The texel walk's depths (depth_bounds.h "Texel walk"), RGBA16_UNORM: each rectified texel's two
+// rectified depths and the second's weight (the distribution its representation holds), written by
+// the rectification and read by the evaluation. 1 × 1 placeholder when off.
+layout(set = 0, binding = 19, rgba16) uniform image2D texel_depths;
 
 #include "common/view_ray.glsl"
 
@@ -93,6 +97,9 @@ float tyn_pf_lookup_v(float v) {
 
 // pf.bounds.y: the row depth bounds are built and read (PrefilteredSettings::depthBounds).
 bool tyn_pf_depth_bounds() { return pf.bounds.y != 0.0; }
+
+// pf.walks.y: steps of the texel walk per trimmed segment (PrefilteredSettings::texelWalkSteps).
+bool tyn_pf_texel_walk() { return pf.walks.y != 0u; }
 
 // A node of the min/max tree of the two rows (row0, row1, N) a lookup reads (depth_bounds.h).
 vec2 tyn_depth_bounds_node(ivec3 rows_columns, uint level, int index) {

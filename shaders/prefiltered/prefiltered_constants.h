@@ -54,8 +54,8 @@ struct PrefilteredConstants {
   uvec4 fixup;          // x: epipole block side in pixels (0: no block); y: ray-weight taps per
                         // pixel (weight_taps.h; 1: one lookup); z: 1 = segmented reconstruction
   vec4 bounds;          // x: β between the moment bounds (peters2017 §5.3), negative: adaptive (§5.3.1)
-  uvec4 short_rays;     // x: a ray ending within this many columns of its row's start is ray-marched
-                        // (0: none); yzw: unused
+  uvec4 walks;          // x: a ray ending within this many columns of its row's start is ray-marched
+                        // (0: none); y: steps of the texel walk per trimmed segment (0: none); zw: unused
 };
 
 // The epipole block's dispatch, written on the GPU by epipole_fixup_args.comp.

@@ -5,8 +5,9 @@
 //   - plain: the host texel the light ray crosses (nearest), one depth;
 //   - filtered resampling (peters2017 §5.2): a bilinear sample of the moment shadow map, turned into
 //     two depths and weights by Algorithm 2 (tyn_two_depths_from_moments), each re-projected.
-// The texel then stores the representation of that distribution (storage_variants.glsl) and, with
-// the row depth bounds on, the range of the host depths it was made from (depth_bounds.h).
+// The texel then stores the representation of that distribution (storage_variants.glsl), with the
+// row depth bounds on the range of the host depths it was made from, and with the texel walk the
+// distribution itself: its two depths and the second's weight (depth_bounds.h).
 // Included by rectify_<variant>.comp after defining TYN_PF_BASIS.
 
 #include "prefiltered/prefiltered_common.glsl"
@@ -78,6 +79,7 @@ void main() {
   if (tyn_pf_depth_bounds()) {
     imageStore(depth_bounds_texels, ivec2(texel), vec4(tyn_depth_bounds_quantize(bounds), 0.0, 0.0));
   }
+  if (tyn_pf_texel_walk()) imageStore(texel_depths, ivec2(texel), vec4(depths, weights.y, 0.0));
   for (uint slot = 0u; slot < TYN_PF_SLOTS; ++slot) {
     tyn_pf_store_rectified(ivec2(texel), slot, tyn_pf_slot(slot, depths, weights));
   }

@@ -249,6 +249,13 @@ struct PrefilteredSettings {
   /// and only the columns between them are reconstructed (a ray leaving a roof's shadow into a
   /// window's beam; docs/PREFILTERED.md "Trimmed segments"). Default true.
   bool trimmedSegments = true;
+  /// Texel walk (with the trimmed segments): the columns between a trimmed segment's two runs are
+  /// walked from their start for up to `texelWalkSteps` steps, each a run the row decides (0 or 1)
+  /// or one undecided texel, whose two depths (the filtered resampling's, kept in one more
+  /// RGBA16_UNORM map of 8 bytes per texel) give its visibility exactly; only what the walk does
+  /// not reach is reconstructed (the edges of a window's beam; docs/PREFILTERED.md "Texel walk").
+  /// 0..64, default 8; 0 turns it off.
+  std::uint32_t texelWalkSteps = 8;
 };
 
 const char* to_string(Profile profile) noexcept;

@@ -29,7 +29,7 @@ static_assert(sizeof(gpu::PrefilteredFixupArgs) == 32);
 
 namespace {
 
-constexpr std::uint32_t kBindings = 19;
+constexpr std::uint32_t kBindings = 20;
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 constexpr VkImageUsageFlags kMapUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 // The moment shadow map of the filtered resampling: Θ4* in 16-bit UNORM (peters2017 D.1), which
@@ -37,6 +37,8 @@ constexpr VkImageUsageFlags kMapUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_US
 constexpr VkFormat kMomentMapFormat = VK_FORMAT_R16G16B16A16_UNORM;
 // The row depth bounds (shaders/prefiltered/depth_bounds.h): min and max, rounded outwards to 16 bits.
 constexpr VkFormat kDepthBoundsFormat = VK_FORMAT_R16G16_UNORM;
+// The texel walk's depths (depth_bounds.h "Texel walk"): z1, z2 and w2 in 16-bit UNORM.
+constexpr VkFormat kTexelDepthsFormat = VK_FORMAT_R16G16B16A16_UNORM;
 
 // The storage variants' images, as shaders/prefiltered/storage_variants.glsl declares them.
 struct Storage {
@@ -130,6 +132,7 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
   if (!(s.overestimation >= 0.0f && s.overestimation <= 1.0f)) return invalid("prefiltered.overestimation must be in [0, 1]");
   if (s.epipoleBlockPixels > 256) return invalid("prefiltered.epipoleBlockPixels must be in 0..256");
   if (s.shortRayColumns > s.columns) return invalid("prefiltered.shortRayColumns must be in 0..columns");
+  if (s.texelWalkSteps > 64) return invalid("prefiltered.texelWalkSteps must be in 0..64");
   return {};
 }
 
@@ -168,13 +171,14 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
       {16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
       {17, storage, 1, stage, nullptr},
       {18, storage, 1, stage, nullptr},
+      {19, storage, 1, stage, nullptr},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
   const std::array<VkDescriptorPoolSize, 4> sizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1 + kMaxShadowMaps + 6},
-      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 9},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
   }};
   sets_.resize(slots);
@@ -191,6 +195,7 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
 }
 
 void PrefilteredTechnique::destroyMaps(const Gpu& gpu, Maps& maps) {
+  destroyImage(gpu, maps.texelDepths);
   destroyImage(gpu, maps.depthBoundsPrefix);
   destroyImage(gpu, maps.depthBoundsTexels);
   destroyImage(gpu, maps.prefixB);
@@ -280,6 +285,10 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, const MapKey& key, std:
   }
   if (outcome) {
     outcome = createImage(gpu, kDepthBoundsFormat, boundsExtent, VK_IMAGE_USAGE_STORAGE_BIT, fresh.depthBoundsPrefix);
+  }
+  if (outcome) {
+    outcome = createImage(gpu, kTexelDepthsFormat, key.texelWalk ? extent : VkExtent2D{1, 1},
+                          VK_IMAGE_USAGE_STORAGE_BIT, fresh.texelDepths);
   }
   if (!outcome) {
     destroyMaps(gpu, fresh);
@@ -391,13 +400,17 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   k.options = glm::uvec4(settings.filteredResampling ? 1u : 0u, static_cast<std::uint32_t>(settings.spacing), sets, mapSize);
   const bool segmented = settings.segmentedReconstruction && settings.rayWeightTaps > 1;
   const bool trimmed = segmented && settings.depthBounds && settings.trimmedSegments;
+  const std::uint32_t walk = trimmed ? settings.texelWalkSteps : 0u;
+  if (walk > 0 && !momentMapSupported_) {
+    return failure(Status::UnsupportedFeature, "prefiltered.texelWalkSteps: the device cannot store R16G16B16A16_UNORM");
+  }
   k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, segmented ? 1u : 0u, trimmed ? 1u : 0u);
   k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation,
                        settings.depthBounds ? 1.0f : 0.0f, 0.0f, 0.0f);
-  k.short_rays = glm::uvec4(settings.shortRayColumns, 0u, 0u, 0u);
+  k.walks = glm::uvec4(settings.shortRayColumns, walk, 0u, 0u);
 
   const MapKey key{basis, settings.columns, settings.rows, sets, settings.filteredResampling ? mapSize : 1u,
-                   settings.depthBounds};
+                   settings.depthBounds, walk > 0};
   if (Outcome o = ensureMaps(gpu, key, frameIndex); !o) {
     return o;
   }
@@ -415,6 +428,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
           (settings.depthBounds ? ", row depth bounds" : "") +
           (segmented ? ", segmented reconstruction (" + std::to_string(settings.rayWeightTaps) + " segments)" : "") +
           (trimmed ? ", trimmed segments" : "") +
+          (walk > 0 ? ", texel walk of " + std::to_string(walk) + " steps" : "") +
           (settings.shortRayColumns > 0
                ? ", rays within " + std::to_string(settings.shortRayColumns) + " columns ray-marched"
                : "") +
@@ -442,6 +456,7 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   const VkDescriptorImageInfo prefixB = general(maps_.prefixB, maps_.prefixA);
   const VkDescriptorImageInfo boundsTexels = general(maps_.depthBoundsTexels, maps_.depthBoundsTexels);
   const VkDescriptorImageInfo boundsPrefix = general(maps_.depthBoundsPrefix, maps_.depthBoundsPrefix);
+  const VkDescriptorImageInfo texelDepths = general(maps_.texelDepths, maps_.texelDepths);
 
   std::array<VkWriteDescriptorSet, kBindings> writes{};
   auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
@@ -469,6 +484,7 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   write(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
   write(17, storage, 1).pImageInfo = &boundsTexels;
   write(18, storage, 1).pImageInfo = &boundsPrefix;
+  write(19, storage, 1).pImageInfo = &texelDepths;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
 }
 
@@ -493,7 +509,7 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
   // Every map is bound (the evaluation's descriptors name the prefix sums even when it skips
   // them), so every map is in GENERAL.
   discardToGeneral(gpu, cmd, {&maps_.momentMap, &maps_.rectifiedA, &maps_.rectifiedB, &maps_.prefixA, &maps_.prefixB,
-                              &maps_.depthBoundsTexels, &maps_.depthBoundsPrefix});
+                              &maps_.depthBoundsTexels, &maps_.depthBoundsPrefix, &maps_.texelDepths});
   if (plan_.filtered) {
     const std::uint32_t size = maps_.key.momentMapSize;
     pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {

@@ -60,6 +60,7 @@ class PrefilteredTechnique {
     std::uint32_t sets = 0;
     std::uint32_t momentMapSize = 0;  // 1 without filtered resampling
     bool depthBounds = false;
+    bool texelWalk = false;
     bool operator==(const MapKey&) const = default;
   };
   struct Maps {
@@ -72,6 +73,9 @@ class PrefilteredTechnique {
     // (RG16_UNORM), 1 × 1 without the row depth bounds.
     OwnedImage depthBoundsTexels;
     OwnedImage depthBoundsPrefix;
+    // Each texel's two depths and the second's weight for the texel walk, columns × rows
+    // (RGBA16_UNORM), 1 × 1 without it.
+    OwnedImage texelDepths;
     MapKey key;
   };
   Outcome ensureMaps(const Gpu& gpu, const MapKey& key, std::uint64_t frameIndex);

@@ -118,6 +118,21 @@ TEST(BenchChoice, ThePerSceneBarHoldsWhereSomeConfigurationMeetsIt) {
   EXPECT_EQ(s[*c[1].summary].parameters, "Y");
 }
 
+TEST(BenchChoice, AConfigurationThatSkippedAScenePassesNoBarThere) {
+  // P (a directional-only technique) is faster and more accurate on a but did not run on the spot
+  // scene b, where E meets every bar: P is never chosen, although by its own scenes it would be.
+  std::vector<Row> rows{row("a", "prefiltered", "P", 1.0, 100.0, 0.001), row("a", "epipolar", "E", 2.0, 100.0, 0.01),
+                        row("b", "epipolar", "E", 2.0, 100.0, 0.01)};
+  Row skipped = row("b", "prefiltered", "P", 0.0, 100.0, 0.0);
+  skipped.measured = false;  // directional lights only
+  rows.push_back(skipped);
+  const std::vector<Summary> s = summarize(rows, 64, 36, 256);
+  for (const ProfileChoiceResult& choice : chooseProfiles(s)) {
+    ASSERT_TRUE(choice.summary);
+    EXPECT_EQ(s[*choice.summary].parameters, "E") << choice.goal.name();
+  }
+}
+
 TEST(BenchChoice, NothingFastEnoughTakesTheFastest) {
   std::vector<Row> rows{row("a", "epipolar", "p", 50.0, 100.0, 0.30), row("a", "epipolar", "q", 20.0, 100.0, 0.25)};
   Row broken = row("a", "epipolar", "nan", 0.5, 100.0, 0.001);

@@ -256,9 +256,13 @@ std::vector<ProfileChoiceResult> chooseProfiles(const std::vector<Summary>& summ
         if (goal.maxSceneRelativeRmse > 0.0 && rmse <= goal.maxSceneRelativeRmse) barScenes.insert(scene);
       }
     }
+    // A configuration that did not run on such a scene (the prefiltered technique on a spot
+    // light's) does not meet the bar there: a profile runs on every scene, and what would run in
+    // its place was not measured as this profile.
     const auto meetsSceneBar = [&](const Summary& s) {
-      for (const auto& [scene, rmse] : s.sceneRelativeRmse) {
-        if (barScenes.contains(scene) && rmse > goal.maxSceneRelativeRmse) return false;
+      for (const std::string& scene : barScenes) {
+        auto it = s.sceneRelativeRmse.find(scene);
+        if (it == s.sceneRelativeRmse.end() || it->second > goal.maxSceneRelativeRmse) return false;
       }
       return true;
     };

@@ -113,17 +113,11 @@ float tyn_pf_tap_tau(float u, float reference_sin, float eta) {
                              : tyn_weight_tap_tau_nonlinear(u, reference_sin, pf.nonlinear.origin.w);
 }
 
-// The visibility of column `column` of the lookup's two rows (rows_columns.xy) at depth_ray,
-// interpolated between the rows by `row_fraction` as the bilinear lookup does: each row's verdict
-// where its texel bounds give one, else the share of its two depths (depth_bounds.h "Texel walk").
-float tyn_pf_texel_visibility(ivec3 rows_columns, float row_fraction, int column, float depth_ray) {
-  float row_visibility[2];
-  for (int r = 0; r < 2; ++r) {
-    ivec2 texel = ivec2(column, r == 0 ? rows_columns.x : rows_columns.y);
-    float verdict = tyn_depth_bounds_verdict(imageLoad(depth_bounds_texels, texel).xy, depth_ray);
-    row_visibility[r] = verdict >= 0.0 ? verdict : tyn_two_depth_visibility(imageLoad(texel_depths, texel).xyz, depth_ray);
-  }
-  return mix(row_visibility[0], row_visibility[1], row_fraction);
+// The visibility at depth_ray of one row's texel of the walk, whose texel bounds are `bounds`:
+// their verdict where they give one, else the share of its two depths (depth_bounds.h "Texel walk").
+float tyn_pf_row_texel_visibility(ivec2 texel, vec2 bounds, float depth_ray) {
+  float verdict = tyn_depth_bounds_verdict(bounds, depth_ray);
+  return verdict >= 0.0 ? verdict : tyn_two_depth_visibility(imageLoad(texel_depths, texel).xyz, depth_ray);
 }
 
 // One segment [u_lo, u_hi] of a row for the trimmed segments: its ends and weights, and the ray's
@@ -187,14 +181,22 @@ float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float row_fr
   // The walk through the middle [p, q]: a step is a decided run or one undecided texel.
   int first = p;
   float own_first = own_p;
+  // Each step reads the column's texel bounds in the lookup's two rows once (level 0 of the tree,
+  // x = column): merged they decide a run, apart they decide each row of an undecided texel, whose
+  // rows are then interpolated by `row_fraction` as the bilinear lookup does.
   for (uint step = 0u; step < pf.walks.y && first <= q; ++step) {
-    float side = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, first), depth_ray);
+    ivec2 texel0 = ivec2(first, rows_columns.x);
+    ivec2 texel1 = ivec2(first, rows_columns.y);
+    vec2 bounds0 = imageLoad(depth_bounds_texels, texel0).xy;
+    vec2 bounds1 = imageLoad(depth_bounds_texels, texel1).xy;
+    float side = tyn_depth_bounds_verdict(tyn_depth_bounds_merge(bounds0, bounds1), depth_ray);
     int next = first + 1;
     float visibility = side;
     if (side >= 0.0) {
       next = tyn_depth_bounds_run_end(rows_columns, first, q, depth_ray, side);
     } else {
-      visibility = tyn_pf_texel_visibility(rows_columns, row_fraction, first, depth_ray);
+      visibility = mix(tyn_pf_row_texel_visibility(texel0, bounds0, depth_ray),
+                       tyn_pf_row_texel_visibility(texel1, bounds1, depth_ray), row_fraction);
     }
     float own_next = next > q ? own_q : tyn_pf_own_weight(g, tyn_pf_edge_u(g, c_lo_hi, next, n));
     lit += visibility * (own_next - own_first);

@@ -1,6 +1,9 @@
 // tyndall-bench's summaries over the scenes and the profile choice from them, on made-up rows.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <string>
+
 #include "report.h"
 
 namespace tyndall::samples::bench {
@@ -131,6 +134,59 @@ TEST(BenchChoice, AConfigurationThatSkippedAScenePassesNoBarThere) {
     ASSERT_TRUE(choice.summary);
     EXPECT_EQ(s[*choice.summary].parameters, "E") << choice.goal.name();
   }
+}
+
+// Performance's incumbent ("table", the profile table's configuration) and a more accurate
+// challenger at the given speedups over the Reference; the floor pass is 1 ms.
+std::vector<Summary> incumbentAndChallenger(double tableSpeedup, double challengerSpeedup, double referenceMs = 100.0) {
+  return summarize({row("a", "epipolar", "table", referenceMs / tableSpeedup, referenceMs, 0.043),
+                    row("a", "epipolar", "challenger", referenceMs / challengerSpeedup, referenceMs, 0.032)},
+                   64, 36, 256);
+}
+
+const std::map<Profile, std::string> kTable{{Profile::Performance, "epipolar table"}};
+
+TEST(BenchChoice, AChallengerInsideTheMarginDoesNotReplaceTheIncumbent) {
+  // 52× clears Performance's 50× but not 50 × 1.25: the table's 55× configuration stays, although
+  // the plain goals (no incumbent) would take the more accurate challenger.
+  std::vector<Summary> s = incumbentAndChallenger(55.0, 52.0);
+  EXPECT_EQ(s[*chooseProfiles(s)[2].summary].parameters, "challenger");
+  const ProfileChoiceResult kept = chooseProfiles(s, kTable)[2];
+  EXPECT_EQ(s[*kept.summary].parameters, "table");
+  EXPECT_EQ(kept.incumbent, "epipolar table");
+  EXPECT_TRUE(kept.speedMet);
+  // Past the margin (70× >= 62.5×) the more accurate challenger replaces it.
+  s = incumbentAndChallenger(55.0, 70.0);
+  const ProfileChoiceResult replaced = chooseProfiles(s, kTable)[2];
+  EXPECT_EQ(s[*replaced.summary].parameters, "challenger");
+  EXPECT_EQ(replaced.incumbent, "epipolar table");
+  // The other profiles have no incumbent here: the plain goals.
+  EXPECT_TRUE(chooseProfiles(s, kTable)[0].incumbent.empty());
+}
+
+TEST(BenchChoice, TheFloorGoalHasTheMarginToo) {
+  // Both are far above 50× (1000 ms Reference); the table's is at 3 × the floor, the challenger at
+  // 3.6 ×, within 4 but not within 4 / 1.25 = 3.2.
+  const std::vector<Summary> s = incumbentAndChallenger(1000.0 / 3.0, 1000.0 / 3.6, 1000.0);
+  EXPECT_EQ(s[*chooseProfiles(s)[2].summary].parameters, "challenger");
+  const ProfileChoiceResult kept = chooseProfiles(s, kTable)[2];
+  EXPECT_EQ(s[*kept.summary].parameters, "table");
+  EXPECT_TRUE(kept.floorMet);
+}
+
+TEST(BenchChoice, AnIncumbentThatMissesItsGoalLeavesThePlainGoalsToDecide) {
+  // The table's configuration measured 45×: no configuration clears the margin, so the plain goals
+  // pick the challenger at 52×, which the document reports as replacing the table's.
+  std::vector<Summary> s = incumbentAndChallenger(45.0, 52.0);
+  const ProfileChoiceResult c = chooseProfiles(s, kTable)[2];
+  EXPECT_EQ(s[*c.summary].parameters, "challenger");
+  EXPECT_EQ(c.incumbent, "epipolar table");
+  EXPECT_TRUE(c.speedMet);
+  // An incumbent this run did not measure changes nothing.
+  s = incumbentAndChallenger(55.0, 52.0);
+  const ProfileChoiceResult unmeasured = chooseProfiles(s, {{Profile::Performance, "epipolar gone"}})[2];
+  EXPECT_EQ(s[*unmeasured.summary].parameters, "challenger");
+  EXPECT_TRUE(unmeasured.incumbent.empty());
 }
 
 TEST(BenchChoice, NothingFastEnoughTakesTheFastest) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "profiles.h"
+#include "report.h"
 #include "settings_text.h"
 
 namespace tyndall {
@@ -59,6 +60,8 @@ TEST(TradeoffsDocument, AgreesWithTheProfileTable) {
     const std::string codeParameters = code.technique == Technique::Prefiltered ? samples::describe(code.prefiltered)
                                                                                   : samples::describe(code.epipolar);
     EXPECT_EQ(doc.parameters, codeParameters);
+    // The bench's incumbents (the configurations challengers must beat by a margin) name the same.
+    EXPECT_EQ(samples::bench::profileTableConfigurations().at(profile), doc.technique + " " + doc.parameters);
   }
 }
 

@@ -72,10 +72,11 @@ struct ProfileChoiceResult {
 
 /// The margin a challenger's speed must clear to replace the incumbent, a configuration the profile
 /// table already holds: its speedup at least (1 + margin) × the goal, its time over the floor at
-/// most the floor goal / (1 + margin). The same sweep run twice on lavapipe (TRADEOFFS.md's run
-/// and the 2026-11-26 rerun, out/tradeoffs) gave the same configurations speedups 2–22% apart, so
-/// without a margin a configuration within noise of a goal decides the table by the run's luck:
-/// Performance flipped between two epipolar configurations at 43.9× and 52.3×. Errors are
+/// most the floor goal / (1 + margin). The same lavapipe sweep in TRADEOFFS.md's run of before
+/// 2026-11-26 and in that day's rerun gave the epipolar configurations speedups 2–22% apart (with
+/// code changes between them), and a configuration measured at 43.9× in one and 52.3× in the
+/// next, 5% above Performance's 50×, would have replaced its row: without a margin, a
+/// configuration within a run's spread of a goal decides the table by the run's luck. Errors are
 /// deterministic (the same to every printed digit in both runs) and get no margin.
 inline constexpr double kChallengerSpeedMargin = 0.25;
 

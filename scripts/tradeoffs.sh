@@ -3,8 +3,9 @@
 # analytic ones, the default parameter grid of the epipolar and prefiltered techniques, against the
 # Reference and the full-screen floor pass) and copies its document and plots into docs/.
 # Runs on whatever Vulkan device is present (TYNDALL_DEVICE picks one). On Mesa lavapipe with 2
-# cores the default (640x360, 2048² maps) took 32 minutes (150 measurements: the floor pass,
-# the Reference and 23 configurations on each of 6 scenes; a third of it stained-glass's); on a GPU pass
+# cores the default (640x360, 2048² maps) took 33 minutes on 2026-11-26 (the floor pass, the
+# Reference and 23 configurations on each of 6 scenes, the prefiltered ones on the 4 directional
+# ones; a third of it stained-glass's; the grid has one prefiltered configuration more since); on a GPU pass
 # SIZES=1920x1080 SHADOW_MAPS=2048 for the goals.
 # Usage: scripts/tradeoffs.sh [build-dir] (default: build)
 # Environment: SIZES (640x360), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default);

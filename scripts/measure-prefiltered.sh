@@ -3,7 +3,8 @@
 # relative RMSE of L_in (tyndall-compare against the Reference's AOV from the same build and
 # device), the GPU time of each prefiltered pass (timestamps, median over the frames) and Tyndall's
 # total, next to the Reference's (and the ratio of the two: the speedup of the scattering passes,
-# the composite left out of both). Writes out/measure-prefiltered/* and prints one table row per run.
+# the composite left out of both). Writes out/measure-prefiltered/* (MEASURE_OUT) and prints one
+# table row per run.
 # Usage: scripts/measure-prefiltered.sh [build-dir] (default: build)
 # Environment: SCENES (default: the directional scenes), BASES (default: all six), SIZE (640x360),
 #   SHADOW_MAP (1024), FRAMES (3), PREFILTERED (extra --prefiltered keys, e.g. "rows=512,columns=512").
@@ -13,7 +14,7 @@ build="${1:-build}"
 render="$build/samples/tyndall-render"
 compare="$build/samples/tyndall-compare"
 [ -x "$render" ] || { echo "build first: $render not found" >&2; exit 1; }
-out=out/measure-prefiltered
+out="${MEASURE_OUT:-out/measure-prefiltered}"
 mkdir -p "$out"
 size="${SIZE:-640x360}"
 w="${size%x*}"; h="${size#*x}"
@@ -41,10 +42,12 @@ p = t["passMilliseconds"]
 block = p.get("prefiltered_epipole_fixup_args", 0) + p.get("prefiltered_epipole_fixup", 0)
 total = sum(v for k, v in p.items() if k.startswith("prefiltered_"))
 ref = r["passMilliseconds"].get("reference_scattering", 0)
+def ms(v):  # three significant digits down to 0.001 ms: a GPU's passes take well under 0.1 ms
+    return f"{v:.1f}" if v >= 10 else f"{v:.2f}" if v >= 1 else f"{v:.3f}"
 print(f"| {sys.argv[4]} | {sys.argv[5]} | {e['relativeRmse'] * 100:.2f}% | "
-      f"{p.get('prefiltered_moment_shadow_map', 0):.1f} | {p.get('prefiltered_rectify', 0):.1f} | "
-      f"{p.get('prefiltered_prefix_sums', 0):.1f} | {p.get('prefiltered_evaluate', 0):.1f} | {block:.1f} | "
-      f"{total:.1f} | {ref:.1f} | {ref / total:.1f}x |")
+      f"{ms(p.get('prefiltered_moment_shadow_map', 0))} | {ms(p.get('prefiltered_rectify', 0))} | "
+      f"{ms(p.get('prefiltered_prefix_sums', 0))} | {ms(p.get('prefiltered_evaluate', 0))} | {ms(block)} | "
+      f"{ms(total)} | {ms(ref)} | {ref / total:.1f}x |")
 PY
   done
 done

@@ -146,6 +146,7 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
   }
   momentMapSupported_ = usable(gpu, kMomentMapFormat);
   depthBoundsSupported_ = (gpu.optimalFeatures(kDepthBoundsFormat) & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
+  texelDepthsSupported_ = (gpu.optimalFeatures(kTexelDepthsFormat) & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
 
   const std::array<VkSampler, kMaxShadowMaps> nearestSamplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -401,7 +402,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   const bool segmented = settings.segmentedReconstruction && settings.rayWeightTaps > 1;
   const bool trimmed = segmented && settings.depthBounds && settings.trimmedSegments;
   const std::uint32_t walk = trimmed ? settings.texelWalkSteps : 0u;
-  if (walk > 0 && !momentMapSupported_) {
+  if (walk > 0 && !texelDepthsSupported_) {
     return failure(Status::UnsupportedFeature, "prefiltered.texelWalkSteps: the device cannot store R16G16B16A16_UNORM");
   }
   k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, segmented ? 1u : 0u, trimmed ? 1u : 0u);

@@ -96,6 +96,7 @@ class PrefilteredTechnique {
   std::uint32_t supportedVariants_ = 0;  // bit per storage variant whose formats the device has
   bool momentMapSupported_ = false;
   bool depthBoundsSupported_ = false;
+  bool texelDepthsSupported_ = false;  // storage only: the walk's depths are loaded, never filtered
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
   std::vector<MappedBuffer> constants_;  // per slot: PrefilteredConstants

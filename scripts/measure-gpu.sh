@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The measurements behind the documents' GPU sections, in one run on a GPU, each part timed:
+#   tradeoffs    tyndall-bench's default sweep at 1920x1080 with a 2048² map (the issue's goals):
+#                docs/TRADEOFFS-H100.md comes from its results.json, written again here with
+#                FROM=$GPU_OUT/tradeoffs/results.json DOC=docs/TRADEOFFS-H100.md scripts/tradeoffs.sh
+#   epipolar     scripts/bench-epipolar.sh with 20 frames (12 for the Reference): EPIPOLAR.md "On a GPU"
+#   prefiltered  scripts/measure-prefiltered.sh at 1280x720 and 1920x1080 with 1024² and 2048² maps,
+#                every storage variant, 20 frames: PREFILTERED.md "Cost on a GPU"
+# The small files to keep are gathered in $GPU_OUT/keep/ (at most 8: results.json, the Markdown
+# tables, the epipolar rows, the log). Runs on whatever Vulkan device is present (TYNDALL_DEVICE
+# picks one); on lavapipe pick small sizes (below) or it takes hours. A machine without this
+# project's packages runs the bundle of scripts/bundle-binaries.sh: LD_LIBRARY_PATH=DEST/lib
+# scripts/measure-gpu.sh DEST.
+# Usage: scripts/measure-gpu.sh [build-dir] (default: build)
+# Environment: PARTS (tradeoffs epipolar prefiltered), GPU_OUT (out/gpu), FRAMES (20);
+#   TRADEOFF_SIZES (1920x1080); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096);
+#   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); SCENES passes through to
+#   the scripts and the bench (each has its own default).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${1:-build}"
+for p in tyndall-render tyndall-bench tyndall-compare; do
+  [ -x "$build/samples/$p" ] || { echo "build first: $build/samples/$p not found" >&2; exit 1; }
+done
+out="${GPU_OUT:-out/gpu}"
+frames="${FRAMES:-20}"
+mkdir -p "$out/keep"
+log="$out/keep/measure-gpu.log"
+: >"$log"
+say() { echo "$*" | tee -a "$log" >&2; }
+
+for part in ${PARTS:-tradeoffs epipolar prefiltered}; do
+  start=$SECONDS
+  case "$part" in
+    tradeoffs)
+      args=(--sizes "${TRADEOFF_SIZES:-1920x1080}" --shadow-maps 2048 --frames "$frames" --out "$out/tradeoffs")
+      [ -n "${SCENES:-}" ] && args+=(--scenes "$SCENES")
+      "$build/samples/tyndall-bench" "${args[@]}" 2>>"$log" | tail -n 3 >>"$log"
+      cp "$out/tradeoffs/results.json" "$out/keep/tradeoffs-results.json"
+      ;;
+    epipolar)
+      BENCH_OUT="$out/epipolar" FRAMES="$frames" REFERENCE_FRAMES="${REFERENCE_FRAMES:-12}" \
+        SIZES="${EPIPOLAR_SIZES:-1280x720 1920x1080}" SHADOW_MAPS="${EPIPOLAR_MAPS:-2048 4096}" \
+        scripts/bench-epipolar.sh "$build" >"$out/keep/epipolar.md" 2>>"$log"
+      cp "$out/epipolar/rows.jsonl" "$out/keep/epipolar-rows.jsonl"
+      ;;
+    prefiltered)
+      : >"$out/keep/prefiltered.md"
+      for size in ${PREFILTERED_SIZES:-1280x720 1920x1080}; do
+        for map in ${PREFILTERED_MAPS:-1024 2048}; do
+          printf '\n### %s, %s² map\n\n' "$size" "$map" >>"$out/keep/prefiltered.md"
+          MEASURE_OUT="$out/prefiltered" SIZE="$size" SHADOW_MAP="$map" FRAMES="$frames" \
+            SCENES="${SCENES:-pillars fence forest window-room}" scripts/measure-prefiltered.sh "$build" >>"$out/keep/prefiltered.md" 2>>"$log"
+        done
+      done
+      ;;
+    *) echo "unknown part: $part (tradeoffs, epipolar, prefiltered)" >&2; exit 1 ;;
+  esac
+  say "$part: $((SECONDS - start)) s"
+done
+# The device, as the bench's results or the renders' timings name it.
+device="$(python3 - "$out" <<'PY'
+import glob, json, os, sys
+out = sys.argv[1]
+candidates = [f"{out}/keep/tradeoffs-results.json"] + sorted(glob.glob(f"{out}/epipolar/*-reference.json")) + \
+    sorted(glob.glob(f"{out}/prefiltered/*-reference.json"))
+for path in candidates:
+    if os.path.exists(path):
+        print(json.load(open(path))["device"])
+        break
+else:
+    print("unknown")
+PY
+)"
+say "device: $device"
+ls -la "$out/keep" >&2

@@ -71,6 +71,30 @@ void expectEveryProfileWithinTwiceItsBudget(const host::Scene& scene, samples::R
       }
     }
   }
+  // The prefiltered technique with its defaults, which no profile picks but an engine may ask for:
+  // directional lights only (a spot or point light runs the epipolar technique, tested above).
+  if (scene.light.type == host::LightType::Directional) {
+    const PrefilteredSettings defaults;
+    const std::string label = std::string("prefiltered (") + to_string(defaults.basis) + ")";
+    SCOPED_TRACE(caseName + ", " + label);
+    options.profile = Profile::High;
+    options.technique = Technique::Prefiltered;
+    options.prefiltered = defaults;
+    const samples::RenderResult r = renderWithSharedContext(scene, options);
+    const ErrorStats s = compareRgb(r.scattering, reference.scattering);
+    const ErrorStats t = compareRgb(r.transmittance, reference.transmittance);
+    std::printf("[ extremes ] %s :: %s :: L_in %s :: T relative RMSE %.3g%%, NaN/Inf %zu\n", caseName.c_str(),
+                label.c_str(), zero ? "zero expected" : describe(s).c_str(), 100.0 * t.relativeRmse, t.nonFinite);
+    EXPECT_EQ(s.nonFinite, 0u);
+    EXPECT_EQ(t.nonFinite, 0u);
+    EXPECT_LE(t.relativeRmse, 1e-5) << "T is exact per pixel in every technique";
+    if (zero) {
+      EXPECT_EQ(largestRgb(r.scattering), 0.0);
+    } else {
+      EXPECT_EQ(r.stats.technique, Technique::Prefiltered) << r.stats.techniqueNote;
+      EXPECT_LE(s.relativeRmse, prefilteredBar(defaults.basis)) << describe(s) << "; " << r.stats.techniqueNote;
+    }
+  }
   expectNoValidationMessages();
 }
 

@@ -46,6 +46,18 @@ host::Scene loadTestScene(const std::string& name) {
   return *loaded.scene;
 }
 
+double prefilteredBar(PrefilteredBasis basis) {
+  switch (basis) {
+    case PrefilteredBasis::Moments4_64:
+    case PrefilteredBasis::Moments4_128:
+      return 0.08;
+    case PrefilteredBasis::Fourier32:
+      return INFINITY;
+    default:
+      return 0.05;
+  }
+}
+
 ErrorStats compareRgb(const host::ImageRgba32f& measured, const std::vector<double>& referenceRgb,
                       const std::vector<unsigned char>* mask) {
   const std::size_t pixels = static_cast<std::size_t>(measured.width) * measured.height;

@@ -14,8 +14,8 @@
 # Usage: scripts/measure-gpu.sh [build-dir] (default: build)
 # Environment: PARTS (tradeoffs epipolar prefiltered), GPU_OUT (out/gpu), FRAMES (20);
 #   TRADEOFF_SIZES (1920x1080); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096);
-#   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); SCENES passes through to
-#   the scripts and the bench (each has its own default).
+#   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); SCENES (names, space-
+#   separated) passes through to the scripts and the bench (each has its own default).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -34,7 +34,7 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered}; do
   case "$part" in
     tradeoffs)
       args=(--sizes "${TRADEOFF_SIZES:-1920x1080}" --shadow-maps 2048 --frames "$frames" --out "$out/tradeoffs")
-      [ -n "${SCENES:-}" ] && args+=(--scenes "$SCENES")
+      [ -n "${SCENES:-}" ] && args+=(--scenes "${SCENES// /,}")
       "$build/samples/tyndall-bench" "${args[@]}" 2>>"$log" | tail -n 3 >>"$log"
       cp "$out/tradeoffs/results.json" "$out/keep/tradeoffs-results.json"
       ;;
@@ -50,7 +50,8 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered}; do
         for map in ${PREFILTERED_MAPS:-1024 2048}; do
           printf '\n### %s, %s² map\n\n' "$size" "$map" >>"$out/keep/prefiltered.md"
           MEASURE_OUT="$out/prefiltered" SIZE="$size" SHADOW_MAP="$map" FRAMES="$frames" \
-            SCENES="${SCENES:-pillars fence forest window-room}" scripts/measure-prefiltered.sh "$build" >>"$out/keep/prefiltered.md" 2>>"$log"
+            SCENES="${SCENES:-pillars fence forest window-room}" \
+            scripts/measure-prefiltered.sh "$build" >>"$out/keep/prefiltered.md" 2>>"$log"
         done
       done
       ;;

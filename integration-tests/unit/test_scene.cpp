@@ -543,7 +543,11 @@ TriangleMesh triangulateGltf(const std::string& nodesScenesMeshes, const std::st
     "buffers": [{"byteLength": )" + std::to_string(bytes.size()) +
                            R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}], )" +
                            viewsAndAccessors + "}";
-  const std::filesystem::path file = std::filesystem::temp_directory_path() / "tyndall-test-mesh.gltf";
+  // One file per test: ctest runs each test in its own process, two at a time, and a shared name let
+  // one test remove or rewrite the file another was reading (seen under ctest -j2).
+  const ::testing::TestInfo& test = *::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path file = std::filesystem::temp_directory_path() /
+                                     (std::string("tyndall-test-mesh-") + test.test_suite_name() + "." + test.name() + ".gltf");
   std::ofstream(file) << gltf;
   Object object;
   object.type = ObjectType::Gltf;

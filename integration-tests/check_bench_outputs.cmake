@@ -1,7 +1,8 @@
 # Checks bench.tiny_sweep_*'s outputs: every file there, and in results.json the schedule the sweep
 # ran with (SCHEDULE) and the rows it must have (pillars: Reference + 2 configurations measured;
 # spot-lamp: Reference + epipolar measured, prefiltered skipped with its reason), each measured row
-# with a positive time, ratios to the Reference and the floor, a finite error and no NaN/Inf.
+# with a positive time, ratios to the Reference and the floor, a finite error and no NaN/Inf; each
+# row names its scene's light, and tradeoffs.md has a choice per profile for each kind of light.
 foreach(file results.csv results.json results.md choice.json tradeoffs.md pareto-64x36-256.svg pareto-64x36-256.png)
   if(NOT EXISTS "${DIR}/${file}")
     message(FATAL_ERROR "tyndall-bench did not write ${DIR}/${file}")
@@ -23,6 +24,11 @@ foreach(i RANGE ${last})
   string(JSON is_measured GET "${json}" rows ${i} measured)
   string(JSON scene GET "${json}" rows ${i} scene)
   string(JSON technique GET "${json}" rows ${i} technique)
+  string(JSON light GET "${json}" rows ${i} light)
+  if(NOT ((scene STREQUAL "pillars" AND light STREQUAL "directional") OR
+          (scene STREQUAL "spot-lamp" AND light STREQUAL "spot")))
+    message(FATAL_ERROR "row ${i} (${scene}, ${technique}): light '${light}'")
+  endif()
   if(NOT is_measured)
     math(EXPR skipped "${skipped} + 1")
     if(NOT (scene STREQUAL "spot-lamp" AND technique STREQUAL "prefiltered"))
@@ -52,7 +58,9 @@ if(NOT measured EQUAL 5 OR NOT skipped EQUAL 1)
 endif()
 file(READ "${DIR}/tradeoffs.md" doc)
 foreach(profile High Balanced Performance)
-  if(NOT doc MATCHES "\n\\| ${profile} \\| (epipolar|prefiltered) \\| `")
-    message(FATAL_ERROR "tradeoffs.md names no configuration for ${profile}")
-  endif()
+  foreach(lights directional local)
+    if(NOT doc MATCHES "\n\\| ${profile} \\| ${lights} \\| (epipolar|prefiltered) \\| `")
+      message(FATAL_ERROR "tradeoffs.md names no configuration for ${profile} with ${lights} lights")
+    endif()
+  endforeach()
 endforeach()

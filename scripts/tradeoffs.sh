@@ -5,11 +5,13 @@
 # Runs on whatever Vulkan device is present (TYNDALL_DEVICE picks one). On Mesa lavapipe with 2
 # cores the default (640x360, 2048² maps) took 33 minutes on 2026-11-26 (the floor pass, the
 # Reference and 23 configurations on each of 6 scenes, the prefiltered ones on the 4 directional
-# ones; a third of it stained-glass's; the grid has one prefiltered configuration more since); on a GPU pass
+# ones; a third of it stained-glass's; the grid has one prefiltered configuration more since), 22
+# minutes on 2026-11-27 (its rows are docs/data/tradeoffs-lavapipe-results.json); on a GPU pass
 # SIZES=1920x1080 SHADOW_MAPS=2048 for the goals.
 # Usage: scripts/tradeoffs.sh [build-dir] (default: build)
 # Environment: SIZES (640x360), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default);
-#   FROM=out/tradeoffs/results.json writes the document again from an earlier run without measuring;
+#   FROM=out/tradeoffs/results.json writes the document again from an earlier run without measuring
+#   (FROM=docs/data/tradeoffs-lavapipe-results.json: the run docs/TRADEOFFS.md shows);
 #   DOC (docs/TRADEOFFS.md, whose choice is the code's profile table; another path keeps another
 #   device's run beside it, e.g. DOC=docs/TRADEOFFS-H100.md for the GPU run it names).
 set -euo pipefail

@@ -185,6 +185,26 @@ TEST(Profiles, EveryProfileRunsAndSaysWhichTechnique) {
   expectNoValidationMessages();
 }
 
+// The profile table has a row per kind of light (plugin/src/profiles.h): a spot or point light runs
+// the local row, a directional light the directional one, and the note says which.
+TEST(Profiles, EachKindOfLightRunsItsOwnRow) {
+  host::Scene scene = loadTestScene("spot-lamp");
+  for (const auto& [type, row] : {std::pair{host::LightType::Spot, "local light"},
+                                  std::pair{host::LightType::Point, "local light"},
+                                  std::pair{host::LightType::Directional, "directional light"}}) {
+    scene.light.type = type;
+    for (Profile profile : {Profile::High, Profile::Balanced, Profile::Performance}) {
+      samples::RenderOptions options = smallOptions(32, 18);
+      options.profile = profile;
+      const samples::RenderResult result = renderWithAovs(scene, options);
+      EXPECT_EQ(result.stats.technique, Technique::Epipolar);
+      EXPECT_NE(result.stats.techniqueNote.find(row), std::string::npos)
+          << to_string(profile) << ": " << result.stats.techniqueNote;
+    }
+  }
+  expectNoValidationMessages();
+}
+
 // Switches the profile (and now and then the technique) of the effect it wraps every frame, and
 // keeps what each frame asked for and what ran.
 class SwitchingEffect final : public host::PostProcessEffect {

@@ -49,6 +49,37 @@ TEST(BenchSummary, MediansOverTheScenesAndTheWorstScene) {
   EXPECT_DOUBLE_EQ(s[0].timeSpread, 1.0);  // (3 − 1) / 2
 }
 
+TEST(BenchSummary, OverTheScenesOfOneKindOfLight) {
+  // Two directional scenes and a spot one: the kinds' summaries see only their scenes, so a
+  // configuration fast on the directional ones is not slowed by the spot scene's cost, nor the spot
+  // scene's choice decided by the directional ones.
+  std::vector<Row> rows{row("sun-a", "epipolar", "x", 1.0, 100.0, 0.01), row("sun-b", "epipolar", "x", 3.0, 100.0, 0.03),
+                        row("lamp", "epipolar", "x", 50.0, 100.0, 0.2)};
+  rows[0].light = rows[1].light = "directional";
+  rows[2].light = "spot";
+  EXPECT_EQ(lightClassOf(rows[0]), LightClass::Directional);
+  EXPECT_EQ(lightClassOf(rows[2]), LightClass::Local);
+  Row point = rows[2];
+  point.light = "point";
+  EXPECT_EQ(lightClassOf(point), LightClass::Local);
+  const std::vector<Summary> all = summarize(rows, 64, 36, 256);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_EQ(all[0].scenes, 3u);
+  EXPECT_DOUBLE_EQ(all[0].milliseconds, 3.0);
+  const std::vector<Summary> sun = summarize(rows, 64, 36, 256, LightClass::Directional);
+  ASSERT_EQ(sun.size(), 1u);
+  EXPECT_EQ(sun[0].scenes, 2u);
+  EXPECT_DOUBLE_EQ(sun[0].milliseconds, 2.0);
+  EXPECT_DOUBLE_EQ(sun[0].worstRelativeRmse, 0.03);
+  const std::vector<Summary> lamp = summarize(rows, 64, 36, 256, LightClass::Local);
+  ASSERT_EQ(lamp.size(), 1u);
+  EXPECT_EQ(lamp[0].scenes, 1u);
+  EXPECT_EQ(lamp[0].worstScene, "lamp");
+  // Only the spot scene's 2× speedup counts for the local row: no profile's speed goal is met.
+  for (const ProfileChoiceResult& c : chooseProfiles(lamp)) EXPECT_FALSE(c.speedMet);
+  EXPECT_TRUE(chooseProfiles(sun)[0].speedMet);  // High: 50× over the directional scenes
+}
+
 TEST(BenchChoice, MostAccurateThatMeetsEachSpeedGoal) {
   // Speedups 10×, 20×, 40×, 100× at errors 1%, 3%, 6%, 12%; the floor is 1 ms.
   std::vector<Row> rows{row("a", "epipolar", "slow", 10.0, 100.0, 0.01), row("a", "epipolar", "mid", 5.0, 100.0, 0.03),
@@ -162,6 +193,30 @@ TEST(BenchChoice, AChallengerInsideTheMarginDoesNotReplaceTheIncumbent) {
   EXPECT_EQ(replaced.incumbent, "epipolar table");
   // The other profiles have no incumbent here: the plain goals.
   EXPECT_TRUE(chooseProfiles(s, kTable)[0].incumbent.empty());
+}
+
+TEST(BenchChoice, AChallengerBarelyMoreAccurateDoesNotReplaceTheIncumbent) {
+  // Balanced: the table's at 35× and 0.86%, a challenger past the speed margin (40× >= 31.25×)
+  // but only 7% more accurate stays out; 12% more accurate, it replaces the table's.
+  const std::map<Profile, std::string> table{{Profile::Balanced, "epipolar table"}};
+  const auto balanced = [&](double challengerRmse) {
+    const std::vector<Summary> s = summarize({row("a", "epipolar", "table", 100.0 / 35.0, 100.0, 0.0086),
+                                              row("a", "epipolar", "challenger", 100.0 / 40.0, 100.0, challengerRmse)},
+                                             64, 36, 256);
+    return s[*chooseProfiles(s, table)[1].summary].parameters;
+  };
+  EXPECT_EQ(balanced(0.0080), "table");
+  EXPECT_EQ(balanced(0.0076), "challenger");
+  // Performance: a challenger that meets the floor goal the table's misses replaces it however
+  // little more accurate it is (1000 ms Reference: the table's at 100× is 10 × the floor, the
+  // challenger at 400× is 2.5 ×, within 4 / 1.25).
+  const std::map<Profile, std::string> performance{{Profile::Performance, "epipolar table"}};
+  const std::vector<Summary> s = summarize({row("a", "epipolar", "table", 10.0, 1000.0, 0.043),
+                                            row("a", "epipolar", "challenger", 2.5, 1000.0, 0.0425)},
+                                           64, 36, 256);
+  const ProfileChoiceResult c = chooseProfiles(s, performance)[2];
+  EXPECT_EQ(s[*c.summary].parameters, "challenger");
+  EXPECT_TRUE(c.floorMet);
 }
 
 TEST(BenchChoice, TheFloorGoalHasTheMarginToo) {

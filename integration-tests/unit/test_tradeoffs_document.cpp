@@ -22,10 +22,11 @@ struct DocumentRow {
   std::string parameters;
 };
 
-// The rows of the table under "## The choice": | Profile | technique | `parameters` | ...
-std::map<std::string, DocumentRow> choiceTable(const std::string& path) {
+// The rows of the table under "## The choice", by profile and kind of light:
+// | Profile | lights | technique | `parameters` | ...
+std::map<std::pair<std::string, std::string>, DocumentRow> choiceTable(const std::string& path) {
   std::ifstream file(path);
-  std::map<std::string, DocumentRow> rows;
+  std::map<std::pair<std::string, std::string>, DocumentRow> rows;
   std::string line;
   bool inSection = false;
   while (std::getline(file, line)) {
@@ -39,29 +40,35 @@ std::map<std::string, DocumentRow> choiceTable(const std::string& path) {
       const std::size_t last = cell.find_last_not_of(' ');
       cells.push_back(first == std::string::npos ? "" : cell.substr(first, last - first + 1));
     }
-    if (cells.size() < 3 || cells[2].size() < 2 || cells[2].front() != '`') continue;
-    rows[cells[0]] = {cells[1], cells[2].substr(1, cells[2].size() - 2)};
+    if (cells.size() < 4 || cells[3].size() < 2 || cells[3].front() != '`') continue;
+    rows[{cells[0], cells[1]}] = {cells[2], cells[3].substr(1, cells[3].size() - 2)};
   }
   return rows;
 }
 
 TEST(TradeoffsDocument, AgreesWithTheProfileTable) {
   const std::string path = std::string(TYNDALL_DOCS_DIR) + "/TRADEOFFS.md";
-  const std::map<std::string, DocumentRow> rows = choiceTable(path);
+  const std::map<std::pair<std::string, std::string>, DocumentRow> rows = choiceTable(path);
   ASSERT_FALSE(rows.empty()) << path << " has no table under '## The choice'";
-  for (Profile profile : {Profile::High, Profile::Balanced, Profile::Performance}) {
-    SCOPED_TRACE(to_string(profile));
-    const ProfileChoice& code = profileChoice(profile);
-    std::string name = to_string(profile);
-    name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
-    ASSERT_TRUE(rows.contains(name)) << path << " names no configuration for " << name;
-    const DocumentRow& doc = rows.at(name);
-    EXPECT_EQ(doc.technique, to_string(code.technique));
-    const std::string codeParameters = code.technique == Technique::Prefiltered ? samples::describe(code.prefiltered)
-                                                                                  : samples::describe(code.epipolar);
-    EXPECT_EQ(doc.parameters, codeParameters);
-    // The bench's incumbents (the configurations challengers must beat by a margin) name the same.
-    EXPECT_EQ(samples::bench::profileTableConfigurations().at(profile), doc.technique + " " + doc.parameters);
+  for (LightClass lights : {LightClass::Directional, LightClass::Local}) {
+    for (Profile profile : {Profile::High, Profile::Balanced, Profile::Performance}) {
+      SCOPED_TRACE(std::string(to_string(profile)) + ", " + to_string(lights));
+      const ProfileChoice& code = profileChoice(profile, lights);
+      EXPECT_EQ(code.profile, profile);
+      EXPECT_EQ(code.lights, lights);
+      std::string name = to_string(profile);
+      name[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(name[0])));
+      const std::pair<std::string, std::string> key{name, to_string(lights)};
+      ASSERT_TRUE(rows.contains(key)) << path << " names no configuration for " << name << " with " << key.second
+                                      << " lights";
+      const DocumentRow& doc = rows.at(key);
+      EXPECT_EQ(doc.technique, to_string(code.technique));
+      const std::string codeParameters = code.technique == Technique::Prefiltered ? samples::describe(code.prefiltered)
+                                                                                    : samples::describe(code.epipolar);
+      EXPECT_EQ(doc.parameters, codeParameters);
+      // The bench's incumbents (the configurations challengers must beat by a margin) name the same.
+      EXPECT_EQ(samples::bench::profileTableConfigurations(lights).at(profile), doc.technique + " " + doc.parameters);
+    }
   }
 }
 

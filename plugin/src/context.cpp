@@ -383,7 +383,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   const Profile profile = frame.profile == Profile::Auto
                               ? autoProfile.choose(stats.frameIndex, frame.autoBudgetMilliseconds)
                               : frame.profile;
-  const ProfileChoice& choice = profileChoice(profile);
+  const ProfileChoice& choice = profileChoice(profile, lightClassOf(frame.light.type));
   Technique technique = frame.technique != Technique::None ? frame.technique : choice.technique;
   std::string note = frame.technique != Technique::None ? std::string("technique set by the frame: ") +
                                                               to_string(frame.technique)

@@ -1,14 +1,30 @@
-// The profile table: which technique and parameters each quality profile uses. Data, not code
-// paths (FidelityFX's quality-mode tables); docs/TRADEOFFS.md will justify each row by
-// measurement once there is more than one technique to choose from.
+// The profile table: which technique and parameters each quality profile uses, per kind of light.
+// Data, not code paths (FidelityFX's quality-mode tables); docs/TRADEOFFS.md justifies each row by
+// measurement (scripts/tradeoffs.sh) and TradeoffsDocument.AgreesWithTheProfileTable keeps the two
+// equal.
 #pragma once
 
 #include "tyndall/tyndall.h"
 
 namespace tyndall {
 
+/// The lights a row of the table is chosen for. A spot light's shafts fill a cone, not the screen,
+/// and its epipolar slices cover only the wedge that can see the cone (epipolar/slice_arc.h), so
+/// the same accuracy costs it different parameters than a directional light; the sweep chooses a
+/// row for each over the scenes of that kind. Point lights take the local row: the sweep has no
+/// point-light scene (a point light's frame takes tens of seconds on lavapipe, docs/EPIPOLAR.md).
+enum class LightClass : std::uint8_t { Directional, Local };
+
+constexpr LightClass lightClassOf(LightType type) {
+  return type == LightType::Directional ? LightClass::Directional : LightClass::Local;
+}
+
+/// "directional", "local": the names docs/TRADEOFFS.md's choice table uses.
+const char* to_string(LightClass lights);
+
 struct ProfileChoice {
   Profile profile;
+  LightClass lights;
   Technique technique;
   /// Why, in one line, for the stats.
   const char* note;
@@ -18,7 +34,8 @@ struct ProfileChoice {
   PrefilteredSettings prefiltered{};
 };
 
-/// The row for a profile (the context resolves Auto to High, Balanced or Performance first).
-const ProfileChoice& profileChoice(Profile profile);
+/// The row for a profile and a kind of light (the context resolves Auto to High, Balanced or
+/// Performance first).
+const ProfileChoice& profileChoice(Profile profile, LightClass lights);
 
 }  // namespace tyndall

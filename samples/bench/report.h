@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "profiles.h"
 #include "sweep.h"
 
 namespace tyndall::samples::bench {
@@ -32,8 +33,13 @@ struct Summary {
   std::map<std::string, double> sceneRelativeRmse;  ///< per scene
 };
 
+/// The kind of light a row's scene has (Row::light).
+LightClass lightClassOf(const Row& row);
+
+/// The configurations over the scenes of one output and shadow-map size; with `lights`, over the
+/// scenes of that kind of light only (the profile table's rows are chosen per kind).
 std::vector<Summary> summarize(const std::vector<Row>& rows, std::uint32_t width, std::uint32_t height,
-                               std::uint32_t shadowMap);
+                               std::uint32_t shadowMap, std::optional<LightClass> lights = std::nullopt);
 
 /// A profile's goals (the issue's, at 1920×1080 with a 2048² map, medians over the scenes) and the
 /// configuration picked for it: of those that meet the per-scene bar and the speed goal (and the
@@ -68,6 +74,8 @@ struct ProfileChoiceResult {
   /// The incumbent's configuration name (as Summary::configuration) when it was measured in this
   /// group; empty otherwise. The choice is it, or a challenger that cleared the margin.
   std::string incumbent;
+  /// The kind of light the summaries were of (set by the caller of chooseProfiles).
+  LightClass lights = LightClass::Directional;
 };
 
 /// The margin a challenger's speed must clear to replace the incumbent, a configuration the profile
@@ -77,18 +85,31 @@ struct ProfileChoiceResult {
 /// code changes between them), and a configuration measured at 43.9× in one and 52.3× in the
 /// next, 5% above Performance's 50×, would have replaced its row: without a margin, a
 /// configuration within a run's spread of a goal decides the table by the run's luck. Errors are
-/// deterministic (the same to every printed digit in both runs) and get no margin.
+/// deterministic (the same to every printed digit in both runs) and get no margin for noise
+/// (kChallengerErrorMargin below is against churn).
 inline constexpr double kChallengerSpeedMargin = 0.25;
 
+/// The margin a challenger's accuracy must clear to replace an incumbent that meets the same goals:
+/// its median relative RMSE at most (1 − margin) × the incumbent's. Errors do not vary between runs,
+/// but a row that changes moves every figure the documents and tests quote for that profile, and a
+/// challenger barely more accurate is not worth it: the 2026-11-27 sweep would have replaced
+/// Balanced's directional row (35.1×, 0.860%) with twice its samples (31.8×, 0.852%), 10% slower
+/// for an error 1% lower.
+inline constexpr double kChallengerErrorMargin = 0.10;
+
 /// The configuration (Summary::configuration, e.g. "epipolar slices=128,samples=128") each profile
-/// holds in plugin/src/profiles.cpp's table: the incumbents of the choice.
-std::map<Profile, std::string> profileTableConfigurations();
+/// holds for a kind of light in plugin/src/profiles.cpp's table: the incumbents of the choice.
+std::map<Profile, std::string> profileTableConfigurations(LightClass lights);
+/// Both kinds' (ReportContext::incumbents).
+std::map<LightClass, std::map<Profile, std::string>> profileTableConfigurations();
 
 /// Per profile (profileGoals()), of the configurations that meet its per-scene bar and its speed
 /// goals, the most accurate. When the profile's incumbent (`incumbents`, e.g.
 /// profileTableConfigurations()) was measured, the others' speed must clear the goals by
-/// kChallengerSpeedMargin (hysteresis: a run's noise does not move the table); if neither it nor
-/// any challenger does, the plain goals decide.
+/// kChallengerSpeedMargin (hysteresis: a run's noise does not move the table), and where the
+/// incumbent meets the same goals as the most accurate challenger, the challenger's error must
+/// clear kChallengerErrorMargin; if neither the incumbent nor any challenger clears the speed
+/// goals so, the plain goals decide.
 std::vector<ProfileChoiceResult> chooseProfiles(const std::vector<Summary>& summaries,
                                                 const std::map<Profile, std::string>& incumbents = {});
 
@@ -101,16 +122,19 @@ struct ReportContext {
   /// bench recorded it, which measured each configuration's frames in a row.
   std::string schedule;
   double orbitDegreesPerFrame = 0.0;
-  /// The configurations the profile table holds (chooseProfiles' incumbents).
-  std::map<Profile, std::string> incumbents = profileTableConfigurations();
+  /// The configurations the profile table holds per kind of light (chooseProfiles' incumbents).
+  std::map<LightClass, std::map<Profile, std::string>> incumbents = profileTableConfigurations();
 };
 
 /// The rows and context of an earlier run's results.json (writeReports writes it), so that the
-/// reports can be written again without measuring again (tyndall-bench --from).
+/// reports can be written again without measuring again (tyndall-bench --from). A file written
+/// before the rows recorded their light takes each scene's from samples/scenes/SCENE.json (run from
+/// the repository root).
 bool readResults(const std::string& path, std::vector<Row>& rows, ReportContext& context, std::string& error);
 
 /// Writes into `directory`: results.csv, results.json, results.md, pareto-WxH-N.svg/.png per group,
-/// choice.json and tradeoffs.md. Files are written whole (temporary file, rename).
+/// choice.json and tradeoffs.md. The choice is made per kind of light present in the rows, over that
+/// kind's scenes. Files are written whole (temporary file, rename).
 bool writeReports(const std::vector<Row>& rows, const ReportContext& context, const std::string& directory,
                   std::string& error);
 

@@ -15,6 +15,15 @@
 
 namespace tyndall::samples::bench {
 
+const char* lightName(host::LightType type) {
+  switch (type) {
+    case host::LightType::Directional: return "directional";
+    case host::LightType::Spot: return "spot";
+    case host::LightType::Point: return "point";
+  }
+  return "point";
+}
+
 std::string configurationName(const std::string& technique, const std::string& parameters) {
   return technique == to_string(Technique::Reference) ? technique : technique + " " + parameters;
 }
@@ -197,6 +206,7 @@ class Sweep {
     const Configuration referenceConfig;
     Row base;
     base.scene = stem;
+    base.light = lightName(scene.light.type);
     base.width = width;
     base.height = height;
     base.shadowMap = map;

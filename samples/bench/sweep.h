@@ -12,7 +12,14 @@
 
 #include "tyndall/tyndall.h"
 
+namespace tyndall::host {
+enum class LightType;  // tyndall_host/scene.h
+}
+
 namespace tyndall::samples::bench {
+
+/// "directional", "spot" or "point": a scene's light as Row::light names it.
+const char* lightName(host::LightType type);
 
 /// A technique with its parameters. `parameters` is settings_text's describe() of the settings, so
 /// equal settings give equal names.
@@ -65,6 +72,9 @@ struct SweepOptions {
 /// One configuration on one scene at one output and shadow-map size.
 struct Row {
   std::string scene;  ///< file stem
+  /// The scene's light: "directional", "spot" or "point" (the profile table has a row per
+  /// LightClass, chosen over that kind's scenes).
+  std::string light;
   std::uint32_t width = 0, height = 0, shadowMap = 0;
   std::string configuration, technique, parameters;
   std::string techniqueUsed;  ///< Stats::technique (a profile or fallback may differ)

@@ -539,6 +539,19 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
     summariesText += "\n### " + std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) +
                      "² shadow map\n\n![time against error](" + stem + ".svg)\n\n" +
                      summariesMarkdown(summaries, frontSummaries);
+    // Per kind of light too, when the sweep has both: the summaries each kind's rows are chosen
+    // from, with that kind's Pareto front.
+    if (groupChoice.size() > 1) {
+      for (const ClassChoice& c : groupChoice) {
+        std::vector<std::size_t> classSummaryOf, classFront;
+        const std::vector<PlotPoint> classPoints = plotPoints(c.summaries, c.choice, classSummaryOf);
+        for (std::size_t p : paretoFront(classPoints)) classFront.push_back(classSummaryOf[p]);
+        summariesText += std::string("\n#### ") +
+                         (c.lights == LightClass::Directional ? "Directional-light scenes" : "Spot- and point-light scenes") +
+                         " (the `" + to_string(c.lights) + "` rows are chosen from these)\n\n" +
+                         summariesMarkdown(c.summaries, classFront);
+      }
+    }
     if (chooseHere && !summaries.empty()) choice = std::move(groupChoice);
   }
   if (choice.empty()) {

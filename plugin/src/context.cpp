@@ -453,11 +453,16 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
     // The light-colour texture's sums along the slices' lines, for the march along them.
     const std::uint32_t colorSamples = epipolarK.tree.w != 0 ? epipolarK.tree.x : 0;
-    // Only a frame whose fix-up walks texel by texel (not in steps) builds the blocks it walks.
-    const std::uint32_t shadowBlocks = !frame.shadowMaps.empty() && epipolarSettings.fixupSteps == 0
-                                           ? shadowBlockCount(frame.light.type, frame.shadowMaps[0].depth.extent.width)
-                                           : 0;
-    epipolarK.arc.w = static_cast<float>(shadowBlocks);  // fixup_args.comp sizes the blocks pass by it
+    // The blocks the walks cross (block_walk.glsl): a point light's march walks every sample; a
+    // directional light's fix-up only where it walks texel by texel (not in steps).
+    const bool walked = frame.light.type == LightType::Point || epipolarSettings.fixupSteps == 0;
+    const VkExtent2D shadowBlocks =
+        !frame.shadowMaps.empty() && walked
+            ? shadowBlockExtent(frame.light.type, frame.shadowMaps[0].depth.extent.width,
+                                static_cast<std::uint32_t>(frame.shadowMaps.size()))
+            : VkExtent2D{0, 0};
+    // Blocks along a map's side: fixup_args.comp sizes a directional light's blocks pass by it.
+    epipolarK.arc.w = static_cast<float>(shadowBlocks.width);
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, colorSamples, shadowBlocks, extent,
                                      stats.frameIndex, desc.maxFramesInFlight);
         !o) {

@@ -16,9 +16,14 @@ layout(set = 0, binding = 4, rgba32f) uniform image2D epipolar_coordinates;
 // Per (sample, slice): L_in of the ray-marched sample.
 layout(set = 0, binding = 5, rgba32f) uniform image2D epipolar_scattering;
 layout(set = 0, binding = 6, rgba32f) uniform image2D out_scattering;
-// Nearest and farthest depth of shadow map 0 per block of TYN_EPIPOLAR_SHADOW_BLOCK² texels
-// (shadow_blocks.comp), for a directional light's fix-up (block_walk.glsl); 1 × 1 otherwise.
+// Nearest and farthest depth per block of tyn_shadow_block_size()² texels of each shadow map,
+// map m's in rows [m · side, (m + 1) · side) (shadow_blocks.comp), for a directional light's fix-up
+// and a point light's march and fix-up (block_walk.glsl); 1 × 1 otherwise.
 layout(set = 0, binding = 7, rg32f) uniform image2D shadow_blocks;
+// Texels along a block's side: a point light's (six maps) or a directional light's.
+int tyn_shadow_block_size() {
+  return int(frame.counts.z > 1u ? TYN_EPIPOLAR_POINT_SHADOW_BLOCK : TYN_EPIPOLAR_SHADOW_BLOCK);
+}
 // Pixels the unwarp could not interpolate, count first (read back for the stats).
 layout(set = 0, binding = 8, std430) buffer FixupList {
   uint fixup_count;

@@ -13,7 +13,8 @@
 #include "epipolar/epipolar_common.glsl"
 // A point light's lit sections from the semi-analytic table (reference_march.glsl).
 #define TYN_WALK_LIT_SECTIONS
-// A directional light's map crossed block by block where a block decides all its texels.
+// A directional light's map and a point light's six crossed block by block where a block decides
+// all its texels.
 #define TYN_WALK_SHADOW_BLOCKS
 // EpipolarSettings::fixupSteps > 0: N steps per map instead of the texel walk.
 #define TYN_WALK_IN_STEPS
@@ -21,8 +22,11 @@
 #include "epipolar/block_walk.glsl"
 #include "epipolar/fixup_steps.glsl"
 
-// Whether this frame built the blocks (fixup_args.comp).
-bool tyn_shadow_blocks_built() { return shadow_block_groups[0] != 0u; }
+// Whether this frame built the blocks: a point light's before the march, whenever the frame has
+// a block image; a directional light's where fixup_args.comp found them worth building.
+bool tyn_shadow_blocks_built() {
+  return TYN_LIGHT_TYPE == TYN_LIGHT_POINT ? epipolar.arc.w != 0.0 : shadow_block_groups[0] != 0u;
+}
 #define TYN_SCATTERING_LUT_FETCH(texel) imageLoad(scattering_lut, texel).rgb
 #define TYN_SCATTERING_LUT_FRAME
 #include "epipolar/scattering_lut.h"

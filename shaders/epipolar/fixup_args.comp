@@ -3,11 +3,12 @@
 // the fix-up splits each walk over its workgroup, one thread per pixel when it does not
 // (fixup.comp), up to the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and
 // its debug view loop over the rest): zero groups, and so no work, when the unwarp flagged none.
-// Where the frame has a block image (EpipolarConstants::arc.w, set by the context for a directional
-// light whose fix-up walks texel by texel) it also sizes the shadow-map blocks pass
+// Where a directional light's frame has a block image (EpipolarConstants::arc.w, set by the context
+// when its fix-up walks texel by texel) it also sizes the shadow-map blocks pass
 // (shadow_blocks.comp): the blocks read the whole map, a cost the fix-up's block steps repay only
 // when it walks enough rays (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS); otherwise zero groups, and the
-// fix-up walks texel by texel or in steps.
+// fix-up walks texel by texel or in steps. A point light's blocks are built before the march,
+// which walks every sample: the groups written here for one are not read.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 

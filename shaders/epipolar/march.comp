@@ -10,11 +10,17 @@
 // colour over it from the slice's prefix sums (light_color_sums.h; yusov2013 "Colored Light
 // Shafts" walks them at the fine step instead). Point lights
 // (six maps, no single line) and slices without a line in the map use the Reference's texel walk,
-// with its lit sections integrated from the same table (TYN_WALK_LIT_SECTIONS).
+// with its lit sections integrated from the same table (TYN_WALK_LIT_SECTIONS); a point light's
+// walk crosses its maps block by block where a block decides all its texels (block_walk.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 #define TYN_WALK_LIT_SECTIONS
-#include "reference/reference_march.glsl"
+#define TYN_WALK_SHADOW_BLOCKS
+#include "epipolar/block_walk.glsl"
+
+// A point light's frame builds its six maps' blocks before the march (EpipolarTechnique::record);
+// a directional light's are built after it, for the fix-up, if at all.
+bool tyn_shadow_blocks_built() { return TYN_LIGHT_TYPE == TYN_LIGHT_POINT && epipolar.arc.w != 0.0; }
 
 // Specialised per light-colour texture: with one, lit sections are integrated chunk by chunk.
 layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;

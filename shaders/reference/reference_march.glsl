@@ -107,13 +107,6 @@ vec2 tyn_texel_lit_part(TynShadowRay r, float z_texel, float t, float t_next) {
   return lit;
 }
 
-#ifdef TYN_WALK_SHADOW_BLOCKS
-// The epipolar fix-up's walk of a directional light's map where the frame built its blocks
-// (epipolar/block_walk.glsl; the including shader defines both).
-vec3 tyn_walk_shadow_blocks(vec3 origin, vec3 dir, float t0, float t1);
-bool tyn_shadow_blocks_built();
-#endif
-
 #ifdef TYN_WALK_IN_STEPS
 // The epipolar fix-up's stepped march where EpipolarSettings::fixupSteps asks for one
 // (epipolar/fixup_steps.glsl; the including shader defines both): this part's share of the steps
@@ -138,13 +131,60 @@ vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, ui
 vec3 tyn_point_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b);
 #endif
 
+// Whether the walk merges a point light's lit parts into sections (TYN_WALK_LIT_SECTIONS above).
+bool tyn_walk_merges_sections(bool directional) {
+#ifdef TYN_WALK_LIT_SECTIONS
+  return !directional && TYN_LIGHT_TYPE == TYN_LIGHT_POINT && !tyn_has_light_color();
+#else
+  return false;
+#endif
+}
+
+// Adds the lit part [a, b] (b > a) of a walk's ray: a directional light's Σ ∫ e^{−σ_t t} dt, its
+// light colour taken at the part's middle (the fine step); a local light's in-scattered radiance
+// by quadrature (which takes the colour at every node), or, where the walk merges sections, into
+// the lit section being merged (`section`: [x, y), empty while y ≤ x): a part that begins where the
+// section ends extends it (t is carried from one texel, or block, to the next exactly); any other
+// closes it, integrated from the table, and starts the next.
+void tyn_walk_add_lit_part(inout vec3 sum, inout vec2 section, bool directional, bool sections,
+                           TynLocalLightRay local_ray, vec3 origin, vec3 dir, float a, float b) {
+  if (directional) {
+    sum += tyn_light_color_at(origin + dir * (0.5 * (a + b))) * tyn_transmittance_integral(a, b, frame.extinction.rgb);
+  }
+#ifdef TYN_WALK_LIT_SECTIONS
+  else if (sections) {
+    if (a != section.y) {
+      if (section.y > section.x) sum += tyn_point_light_lut_segment(origin, dir, section.x, section.y);
+      section.x = a;
+    }
+    section.y = b;
+  }
+#endif
+  else {
+    sum += tyn_local_light_piece(local_ray, a, b, false);
+  }
+}
+
+// Closes a walk's last lit section (tyn_walk_add_lit_part).
+void tyn_walk_close_section(inout vec3 sum, vec2 section, bool sections, vec3 origin, vec3 dir) {
+#ifdef TYN_WALK_LIT_SECTIONS
+  if (sections && section.y > section.x) sum += tyn_point_light_lut_segment(origin, dir, section.x, section.y);
+#endif
+}
+
+#ifdef TYN_WALK_SHADOW_BLOCKS
+// The epipolar passes' walk of a directional light's map (the fix-up) or of a point light's six
+// (the march and the fix-up) where the frame built their blocks (epipolar/block_walk.glsl; the
+// including shader defines both).
+vec3 tyn_walk_shadow_blocks(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional);
+bool tyn_shadow_blocks_built();
+#endif
+
 // Walks [t0, t1] (already inside the map) texel by texel. A directional light returns
 // Σ_lit ∫ e^{−σ_t t} dt; a spot or point light returns the in-scattered radiance of the lit parts.
 vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional) {
-#ifdef TYN_WALK_LIT_SECTIONS
-  bool sections = TYN_LIGHT_TYPE == TYN_LIGHT_POINT && !tyn_has_light_color();
-  vec2 section = vec2(t0);  // the lit section being merged: [x, y), empty while y ≤ x
-#endif
+  bool sections = tyn_walk_merges_sections(directional);
+  vec2 section = vec2(t0);  // the lit section being merged (tyn_walk_add_lit_part)
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
   TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
   int size = int(frame.counts.w);
@@ -167,37 +207,12 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
 
     if (t_next > t) {
       vec2 lit = tyn_texel_lit_part(r, tyn_shadow_texel(map, texel), t, t_next);
-      float lit_begin = lit.x;
-      float lit_end = lit.y;
-      if (lit_end > lit_begin) {
-        // A light-colour texture filters a directional light per texel segment, at its middle (the
-        // fine step); a local light's quadrature takes it at every node.
-        if (directional) {
-          sum += tyn_light_color_at(origin + dir * (0.5 * (lit_begin + lit_end))) *
-                 tyn_transmittance_integral(lit_begin, lit_end, frame.extinction.rgb);
-        }
-#ifdef TYN_WALK_LIT_SECTIONS
-        // A part that begins where the section ends extends it (t is carried from one texel to
-        // the next exactly); any other closes it and starts the next.
-        else if (sections) {
-          if (lit_begin != section.y) {
-            if (section.y > section.x) sum += tyn_point_light_lut_segment(origin, dir, section.x, section.y);
-            section.x = lit_begin;
-          }
-          section.y = lit_end;
-        }
-#endif
-        else {
-          sum += tyn_local_light_piece(local_ray, lit_begin, lit_end, false);
-        }
-      }
+      if (lit.y > lit.x) tyn_walk_add_lit_part(sum, section, directional, sections, local_ray, origin, dir, lit.x, lit.y);
     }
     t = t_next;
     if (!tyn_next_texel(texel, step_dir, crossing, size)) break;
   }
-#ifdef TYN_WALK_LIT_SECTIONS
-  if (sections && section.y > section.x) sum += tyn_point_light_lut_segment(origin, dir, section.x, section.y);
-#endif
+  tyn_walk_close_section(sum, section, sections, origin, dir);
   return sum;
 }
 
@@ -232,7 +247,7 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
 #endif
 #ifdef TYN_WALK_SHADOW_BLOCKS
       if (tyn_shadow_blocks_built()) {
-        lit += tyn_walk_shadow_blocks(origin, dir, begin, end);
+        lit += tyn_walk_shadow_blocks(0u, origin, dir, begin, end, true);
       } else
 #endif
       {
@@ -259,8 +274,15 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
         continue;
       }
 #endif
-      sum += tyn_walk_shadow_map(map, origin, dir, tyn_part_begin(t_in, t_out, part, parts),
-                                 tyn_part_end(t_in, t_out, part, parts), false);
+      float begin = tyn_part_begin(t_in, t_out, part, parts);
+      float end = tyn_part_end(t_in, t_out, part, parts);
+#ifdef TYN_WALK_SHADOW_BLOCKS
+      if (tyn_shadow_blocks_built()) {
+        sum += tyn_walk_shadow_blocks(map, origin, dir, begin, end, false);
+        continue;
+      }
+#endif
+      sum += tyn_walk_shadow_map(map, origin, dir, begin, end, false);
     }
   }
   return sum;

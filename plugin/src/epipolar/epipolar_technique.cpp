@@ -51,9 +51,13 @@ std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + 
 
 }  // namespace
 
-std::uint32_t shadowBlockCount(LightType light, std::uint32_t mapSize) {
-  if (light != LightType::Directional || mapSize == 0) return 0;
-  return groups(mapSize, gpu::TYN_EPIPOLAR_SHADOW_BLOCK);
+VkExtent2D shadowBlockExtent(LightType light, std::uint32_t mapSize, std::uint32_t mapCount) {
+  if (light == LightType::Spot || mapSize == 0 || mapCount == 0) return {0, 0};
+  // shaders/epipolar/epipolar_common.glsl, tyn_shadow_block_size.
+  const std::uint32_t block =
+      light == LightType::Point ? gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK : gpu::TYN_EPIPOLAR_SHADOW_BLOCK;
+  const std::uint32_t side = groups(mapSize, block);
+  return {side, side * mapCount};
 }
 
 Outcome validateEpipolarSettings(const EpipolarSettings& s) {
@@ -276,7 +280,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 }
 
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                                   std::uint32_t colorSamples, std::uint32_t shadowBlocks, VkExtent2D extent,
+                                   std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
                                    std::uint64_t frameIndex, std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
   // The fix-up list, at the first frame that runs the technique at this extent (a context that
@@ -359,16 +363,19 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& setti
   return {};
 }
 
-Outcome EpipolarTechnique::prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
+Outcome EpipolarTechnique::prepareShadowBlocks(const Gpu& gpu, VkExtent2D blocks, std::uint64_t frameIndex,
                                                std::uint32_t framesInFlight) {
   retiredShadowBlocks_.release(frameIndex, framesInFlight, [&](OwnedImage& image) { destroyImage(gpu, image); });
-  shadowBlocksUsed_ = side != 0;
-  if (side == 0 || side == shadowBlocks_.extent.width) return {};
+  shadowBlocksUsed_ = blocks.width != 0;
+  if (blocks.width == 0 ||
+      (blocks.width == shadowBlocks_.extent.width && blocks.height == shadowBlocks_.extent.height)) {
+    return {};
+  }
   if (shadowBlocks_.image != VK_NULL_HANDLE) {
     retiredShadowBlocks_.retire(frameIndex, shadowBlocks_);
     shadowBlocks_ = OwnedImage{};
   }
-  if (Outcome o = createImage(gpu, kShadowBlockFormat, {side, side}, kSampleUsage, shadowBlocks_); !o) {
+  if (Outcome o = createImage(gpu, kShadowBlockFormat, blocks, kSampleUsage, shadowBlocks_); !o) {
     shadowBlocksUsed_ = false;
     return o;
   }
@@ -556,6 +563,15 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
     indirectPass(name, march, textures_.marchList.buffer, 0);
   };
+  // A point light's samples are all walked through its six maps (no slice line): their blocks
+  // first, so that the walks cross every block that decides its texels in one step.
+  if (shadowBlocksUsed_ && light == LightType::Point) {
+    const std::uint32_t side = shadowBlocks_.extent.width;
+    pass("epipolar_shadow_blocks", shadowBlocksPipeline_, [&] {
+      gpu.vk.vkCmdDispatch(cmd, groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP),
+                           groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP), shadowBlocks_.extent.height / side);
+    });
+  }
   // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
   if (constants.tree.x != 0 && constants.tree.z != 0) {
     pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
@@ -576,7 +592,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
        [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
   // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
   // enough rays to repay the blocks; fixup_args.comp decides, zero groups otherwise.
-  if (shadowBlocksUsed_) {
+  if (shadowBlocksUsed_ && light == LightType::Directional) {
     indirectPass("epipolar_shadow_blocks", shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
   }
 

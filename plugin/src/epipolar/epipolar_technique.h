@@ -18,9 +18,12 @@
 
 namespace tyndall {
 
-/// Blocks along each side of the fix-up's block image for a directional light's map of
-/// `mapSize`² texels (shaders/epipolar/shadow_blocks.comp); 0 for other lights.
-std::uint32_t shadowBlockCount(LightType light, std::uint32_t mapSize);
+/// The block image (shaders/epipolar/shadow_blocks.comp) for `mapCount` shadow maps of `mapSize`²
+/// texels: the blocks along each side of a map wide, the maps' blocks stacked one under another.
+/// A directional light's fix-up and a point light's march and fix-up walk the blocks
+/// (block_walk.glsl); a spot light's march runs along its slices' min/max trees instead, and its
+/// fix-up keeps the Reference's per-part quadrature: 0 × 0.
+VkExtent2D shadowBlockExtent(LightType light, std::uint32_t mapSize, std::uint32_t mapCount);
 
 /// Checks an EpipolarSettings' every field; the message names the field.
 Outcome validateEpipolarSettings(const EpipolarSettings& settings);
@@ -50,11 +53,11 @@ class EpipolarTechnique {
   /// slice (0: no tree is built this frame) and the light-colour sums `colorSamples` (0: no
   /// light-colour texture, or no slice lines this frame). Textures of other sizes are kept until no
   /// frame in flight can use them (frames in flight need no stall when the parameters change).
-  /// `shadowBlocks`: blocks along each side of the fix-up's shadow-map block image (a directional
-  /// light's map, shadowBlockCount), 0 when the frame needs none. `extent`: the output's, for the
+  /// `shadowBlocks`: the shadow-map block image's extent (shadowBlockExtent), 0 × 0 when the frame
+  /// needs none. `extent`: the output's, for the
   /// fix-up list, created by the first frame that runs the technique at that extent.
   Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                  std::uint32_t colorSamples, std::uint32_t shadowBlocks, VkExtent2D extent,
+                  std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
                   std::uint64_t frameIndex, std::uint32_t framesInFlight);
 
   /// Records every pass; each is timed and appended to `passes`. The host inputs must already
@@ -96,7 +99,7 @@ class EpipolarTechnique {
     std::uint32_t colorSamples = 0;
   };
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);
-  Outcome prepareShadowBlocks(const Gpu& gpu, std::uint32_t side, std::uint64_t frameIndex,
+  Outcome prepareShadowBlocks(const Gpu& gpu, VkExtent2D blocks, std::uint64_t frameIndex,
                               std::uint32_t framesInFlight);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
   Outcome createCommonPipelines(const Gpu& gpu);
@@ -138,11 +141,11 @@ class EpipolarTechnique {
   OwnedImage scatteringLutPlaceholder_;
   bool placeholderInitialised_ = false;
   std::vector<float> scatteringLutMedium_;   // what the table was built for; empty: never built
-  // A directional light's shadow-map blocks (RG32F, shadowBlockCount² texels, rewritten by every
-  // frame's epipolar_shadow_blocks pass); until the first one, and for other lights, a 1×1
-  // placeholder keeps binding 17 valid. Blocks of another map size are kept until no frame in
-  // flight can use them.
-  OwnedImage shadowBlocks_;  // extent: blocks along each side; 0 before the first
+  // The shadow-map blocks of a directional or point light (RG32F, shadowBlockExtent, rewritten by
+  // every frame's epipolar_shadow_blocks pass that reads them); until the first one, and for spot
+  // lights, a 1×1 placeholder keeps binding 7 valid. Blocks of another extent are kept until no
+  // frame in flight can use them.
+  OwnedImage shadowBlocks_;  // 0 × 0 before the first
   OwnedImage shadowBlocksPlaceholder_;
   bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
   RetireQueue<OwnedImage> retiredShadowBlocks_;

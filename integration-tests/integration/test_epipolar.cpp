@@ -167,7 +167,10 @@ TEST(EpipolarLitSections, TheFixUpWalkMatchesTheReference) {
     std::printf("[ lit sections, %s light ] fix-up walk vs reference: %s\n", name, describe(s).c_str());
     EXPECT_GT(s.meanReference, 0.0);
     EXPECT_EQ(s.nonFinite, 0u);
-    EXPECT_LE(s.relativeRmse, type == host::LightType::Spot ? 2e-5 : 1e-3) << describe(s);
+    // The point light's bar is the table's error bound (its walk crosses blocks of its maps too,
+    // block_walk.glsl): measured 3.3e-6; with each block's verdict taken at the ray's nearer end
+    // instead of its farther one, 4.1e-5.
+    EXPECT_LE(s.relativeRmse, type == host::LightType::Spot ? 2e-5 : 3e-5) << describe(s);
   }
   expectNoValidationMessages();
 }

@@ -449,9 +449,10 @@ TEST(EpipolarPasses, FollowTheFrame) {
 // A point light's samples are all walked through its six maps (no slice line to march along), and
 // the walks cross a block of TYN_EPIPOLAR_POINT_SHADOW_BLOCK² texels in one step where the block
 // decides all its texels (epipolar/block_walk.glsl): its frame builds the blocks of the six maps
-// before the first march, once. A spot light's samples march along their slices' trees and its
-// fix-up keeps the Reference's per-part quadrature: no blocks. (That the block steps change L_in
-// only by rounding: EpipolarLitSections above, every pixel walked, and the profiles on point-lamp.)
+// before the first march, once, and the note says so. A spot light's samples march along their
+// slices' trees and its fix-up keeps the Reference's per-part quadrature: no blocks. (That the
+// block steps change L_in only by rounding: EpipolarLitSections above, every pixel walked, and the
+// profiles on point-lamp.)
 TEST(EpipolarPasses, APointLightBuildsItsBlocksBeforeTheMarch) {
   samples::RenderOptions o = options(Technique::Epipolar);
   o.width = 64;
@@ -468,6 +469,8 @@ TEST(EpipolarPasses, APointLightBuildsItsBlocksBeforeTheMarch) {
   EXPECT_LT(std::find(passes.begin(), passes.end(), "epipolar_shadow_blocks"),
             std::find(passes.begin(), passes.end(), "epipolar_march"));
   EXPECT_NE(std::find(passes.begin(), passes.end(), "epipolar_march"), passes.end());
+  EXPECT_NE(point.stats.techniqueNote.find("across blocks of 32^2 texels"), std::string::npos)
+      << point.stats.techniqueNote;
   expectNoValidationMessages();
 }
 

@@ -116,7 +116,10 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
 
 // What the epipolar technique's march does this frame, for the stats.
 std::string epipolarMarchNote(const gpu::EpipolarConstants& k, const EpipolarSettings& settings) {
-  if (k.tree.x == 0) return "; point light: samples marched with the texel walk (no single slice line)";
+  if (k.tree.x == 0) {
+    return "; point light: samples marched with the texel walk across blocks of " +
+           std::to_string(gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK) + "^2 texels (no single slice line)";
+  }
   if (k.tree.z != 0) return "";
   return settings.minMaxTree ? "; shadow map above 4096^2: march without the min/max tree" : "; min/max tree off";
 }

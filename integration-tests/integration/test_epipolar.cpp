@@ -146,14 +146,23 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
 // quadrature per texel part: with an epipole block larger than the screen every pixel is fixed up,
 // so the epipolar output is the fix-up's walk alone. What is left is the table's error (≤ 3e-5 of
 // Ĝ, scattering_lut.h) and the quadrature's. A spot light's fix-up keeps the per-part quadrature:
-// the same code as the Reference, so it must agree to rounding.
+// the same code as the Reference, so it must agree to rounding. The point light also with maps of
+// 1000² texels, not a multiple of its blocks' 32 (the last row and column of blocks clipped).
 TEST(EpipolarLitSections, TheFixUpWalkMatchesTheReference) {
-  for (const host::LightType type : {host::LightType::Spot, host::LightType::Point}) {
+  struct Case {
+    host::LightType type;
+    std::uint32_t shadowMapSize;
+  };
+  for (const Case& c : {Case{host::LightType::Spot, 1024}, Case{host::LightType::Point, 1024},
+                        Case{host::LightType::Point, 1000}}) {
+    const host::LightType type = c.type;
     host::Scene scene = loadTestScene("spot-lamp");
     scene.light.type = type;
-    const char* name = type == host::LightType::Spot ? "spot" : "point";
+    const std::string name = std::string(type == host::LightType::Spot ? "spot" : "point") + " light, " +
+                             std::to_string(c.shadowMapSize) + "^2 maps";
     SCOPED_TRACE(name);
     samples::RenderOptions o = options(Technique::Epipolar);
+    o.shadowMapSize = c.shadowMapSize;
     o.width = 96;
     o.height = 54;
     o.frames = 3;  // the fix-up count of a frame is read when its slot comes round again
@@ -164,7 +173,7 @@ TEST(EpipolarLitSections, TheFixUpWalkMatchesTheReference) {
     ref.technique = Technique::Reference;
     const samples::RenderResult reference = renderWithAovs(scene, ref);
     const ErrorStats s = compareRgb(walked.scattering, reference.scattering);
-    std::printf("[ lit sections, %s light ] fix-up walk vs reference: %s\n", name, describe(s).c_str());
+    std::printf("[ lit sections, %s ] fix-up walk vs reference: %s\n", name.c_str(), describe(s).c_str());
     EXPECT_GT(s.meanReference, 0.0);
     EXPECT_EQ(s.nonFinite, 0u);
     // The point light's bar is the table's error bound (its walk crosses blocks of its maps too,

@@ -54,8 +54,8 @@ class EpipolarTechnique {
   /// light-colour texture, or no slice lines this frame). Textures of other sizes are kept until no
   /// frame in flight can use them (frames in flight need no stall when the parameters change).
   /// `shadowBlocks`: the shadow-map block image's extent (shadowBlockExtent), 0 × 0 when the frame
-  /// needs none. `extent`: the output's, for the
-  /// fix-up list, created by the first frame that runs the technique at that extent.
+  /// needs none. `extent`: the output's, for the fix-up list, created by the first frame that runs
+  /// the technique at that extent.
   Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
                   std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
                   std::uint64_t frameIndex, std::uint32_t framesInFlight);

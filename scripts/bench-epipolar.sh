@@ -21,7 +21,7 @@ reference_frames="${REFERENCE_FRAMES:-4}"
 rows="$out/rows.jsonl"
 : >"$rows"
 # Warm-up, discarded: a GPU's clocks ramp up over its first busy moments, so the first timed run was
-# slow (the H100 run in docs/EPIPOLAR.md: pillars' Reference at 1280x720 took 15.3 ms there against
+# slow (an H100 run of 2026-11-23: pillars' Reference at 1280x720 took 15.3 ms there against
 # 9.8 ms at 1920x1080).
 first_scene="$(set -- ${SCENES:-pillars}; echo "$1")"
 first_size="$(set -- ${SIZES:-1280x720}; echo "$1")"

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The measurements behind the documents' GPU sections, in one run on a GPU, each part timed:
 #   tradeoffs    tyndall-bench's default sweep at 1920x1080 with a 2048² map (the issue's goals):
-#                docs/TRADEOFFS-H100.md comes from its results.json, written again here with
-#                FROM=$GPU_OUT/tradeoffs/results.json DOC=docs/TRADEOFFS-H100.md scripts/tradeoffs.sh
+#                docs/TRADEOFFS-H200.md comes from its results.json, written again here with
+#                FROM=$GPU_OUT/tradeoffs/results.json DOC=docs/TRADEOFFS-H200.md scripts/tradeoffs.sh
 #   epipolar     scripts/bench-epipolar.sh with 20 frames (12 for the Reference): EPIPOLAR.md "On a GPU"
 #   prefiltered  scripts/measure-prefiltered.sh at 1280x720 and 1920x1080 with 1024² and 2048² maps,
 #                every storage variant, 20 frames: PREFILTERED.md "Cost on a GPU"

@@ -13,13 +13,15 @@
 #   FROM=out/tradeoffs/results.json writes the document again from an earlier run without measuring
 #   (FROM=docs/data/tradeoffs-lavapipe-results.json: the run docs/TRADEOFFS.md shows);
 #   DOC (docs/TRADEOFFS.md, whose choice is the code's profile table; another path keeps another
-#   device's run beside it, e.g. DOC=docs/TRADEOFFS-H100.md for the GPU run it names).
+#   device's run beside it, e.g. DOC=docs/TRADEOFFS-H200.md for the GPU run it names).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
 bench="$build/samples/tyndall-bench"
 [ -x "$bench" ] || { echo "build first: $bench not found" >&2; exit 1; }
 out="${BENCH_OUT:-out/tradeoffs}"
+# Plots of an earlier run in the same folder (another size) would otherwise be copied to docs/.
+rm -f "$out"/pareto-*.svg "$out"/pareto-*.png
 if [ -n "${FROM:-}" ]; then
   "$bench" --from "$FROM" --out "$out"
 else

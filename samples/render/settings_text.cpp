@@ -43,7 +43,7 @@ constexpr std::array<const char*, 6> kBasisNames{"moments4_64", "moments4_128", 
                                                  "moments6_96", "moments6_192", "fourier32"};
 constexpr std::array<const char*, 3> kRectificationNames{"automatic", "non-linear", "projective"};
 constexpr std::array<const char*, 3> kSpacingNames{"mean-theta", "reference-ray", "fastest-ray"};
-constexpr std::array<const char*, 2> kPrefixSumNames{"row-parallel", "thread-per-row"};
+constexpr std::array<const char*, 3> kPrefixSumNames{"row-parallel", "thread-per-row", "workgroup-scan"};
 
 // The shortest text that reads back as the same float ("0.15", not "0.150000006").
 std::string floatText(float value) {
@@ -96,7 +96,7 @@ const char* const kEpipolarKeys =
 const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "
-    "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row), "
+    "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row|workgroup-scan), "
     "beta (adaptive|a number in [0, 1]), epipole-block, short-rays, depth-bounds (0|1), segments (0|1), trim (0|1), "
     "texel-walk";
 

@@ -28,6 +28,9 @@ TYN_CONST uint TYN_PF_SPACING_FASTEST_RAY = 2u;
 TYN_CONST uint TYN_PF_ROW_THREADS = 8u;
 TYN_CONST uint TYN_PF_ROWS_PER_GROUP = 8u;
 TYN_CONST uint TYN_PF_THREAD_PER_ROW_GROUP = 64u;
+// The workgroup scan: one row per group of 128 threads (Vulkan's guaranteed minimum of
+// maxComputeWorkGroupInvocations), a run of columns / 128 texels each (16 at the default 2048).
+TYN_CONST uint TYN_PF_SCAN_THREADS = 128u;
 // Texel passes (moment map, rectification) and the epipole block run 8 × 8 groups.
 TYN_CONST uint TYN_PF_TEXEL_GROUP = 8u;
 

@@ -187,8 +187,10 @@ enum class PrefilteredSpacing : std::uint32_t {
 
 /// How the prefix sums along each row are computed (same result, different cost).
 enum class PrefixSumScheme : std::uint32_t {
-  RowParallel,   ///< peters2017 Appendix C: 8 threads per row, each writes every 8th texel (coalesced)
-  ThreadPerRow,  ///< klehm2014 §3.3: one thread walks a row
+  RowParallel,    ///< peters2017 Appendix C: 8 threads per row, each writes every 8th texel (coalesced)
+  ThreadPerRow,   ///< klehm2014 §3.3: one thread walks a row
+  WorkgroupScan,  ///< a workgroup per row: each thread blends a run of texels, a scan joins the runs
+                  ///< (equal to the others up to rounding; docs/PREFILTERED.md "Prefix-sum schemes")
 };
 
 /// Parameters of the prefiltered technique. Every field is validated per frame; the message of an
@@ -219,7 +221,9 @@ struct PrefilteredSettings {
   /// doubt (docs/PREFILTERED.md "Segmented reconstruction"); K reconstructions per pixel instead of
   /// one. No effect with one lookup. Default true.
   bool segmentedReconstruction = true;
-  PrefixSumScheme prefixSums = PrefixSumScheme::RowParallel;
+  /// Default WorkgroupScan: its chain of dependent blends per row is 2·columns/128 + 7 long instead of
+  /// `columns` (docs/PREFILTERED.md "Prefix-sum schemes").
+  PrefixSumScheme prefixSums = PrefixSumScheme::WorkgroupScan;
   /// Moment bases: where the shadow intensity is taken between the sharp lower bound (β = 1,
   /// scattering overestimated) and upper bound (β = 0). true: peters2017 §5.3.1's adaptive
   /// β = (1 + ω_l·ω_p)/2, 0 looking into the light, 1 looking away from it. false: the constant

@@ -126,7 +126,7 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
     return invalid("prefiltered.rayWeightTaps > 1 needs prefiltered.spacing = FastestRay (the re-weighting is "
                    "non-negative only from the slice's fastest ray)");
   }
-  if (static_cast<std::uint32_t>(s.prefixSums) > static_cast<std::uint32_t>(PrefixSumScheme::ThreadPerRow)) {
+  if (static_cast<std::uint32_t>(s.prefixSums) > static_cast<std::uint32_t>(PrefixSumScheme::WorkgroupScan)) {
     return invalid("prefiltered.prefixSums is not a PrefixSumScheme");
   }
   if (!(s.overestimation >= 0.0f && s.overestimation <= 1.0f)) return invalid("prefiltered.overestimation must be in [0, 1]");
@@ -214,18 +214,22 @@ Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
   if (Outcome o = make(shaders::moment_shadow_map_comp(), momentMapPipeline_); !o) return o;
   if (Outcome o = make(shaders::epipole_fixup_args_comp(), fixupArgsPipeline_); !o) return o;
   if (Outcome o = make(shaders::epipole_fixup_comp(), fixupPipeline_); !o) return o;
-  // prefix_sums.glsl's workgroup size (constant_id 0: threads per row, 1: rows per group).
-  const std::array<VkSpecializationMapEntry, 2> sizeEntries{{{0, 0, 4}, {1, 4, 4}}};
-  const std::array<std::uint32_t, 2> rowParallel{gpu::TYN_PF_ROW_THREADS, gpu::TYN_PF_ROWS_PER_GROUP};
-  const std::array<std::uint32_t, 2> threadPerRow{1u, gpu::TYN_PF_THREAD_PER_ROW_GROUP};
-  const VkSpecializationInfo rowParallelSpec{2, sizeEntries.data(), sizeof(rowParallel), rowParallel.data()};
-  const VkSpecializationInfo threadPerRowSpec{2, sizeEntries.data(), sizeof(threadPerRow), threadPerRow.data()};
+  // prefix_sums.glsl's workgroup size (constant_id 0: threads per row, 1: rows per group) and walk
+  // (2: the workgroup scan), per PrefixSumScheme.
+  const std::array<VkSpecializationMapEntry, 3> schemeEntries{{{0, 0, 4}, {1, 4, 4}, {2, 8, 4}}};
+  const std::array<std::array<std::uint32_t, 3>, 3> schemes{{
+      {gpu::TYN_PF_ROW_THREADS, gpu::TYN_PF_ROWS_PER_GROUP, 0u},
+      {1u, gpu::TYN_PF_THREAD_PER_ROW_GROUP, 0u},
+      {gpu::TYN_PF_SCAN_THREADS, 1u, 1u},
+  }};
   // evaluate.comp's storage variant (constant_id 0).
   const VkSpecializationMapEntry basisEntry{0, 0, 4};
   for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
     if (Outcome o = make(kStorage[i].rectify(), rectifyPipelines_[i]); !o) return o;
-    if (Outcome o = make(kStorage[i].prefixSums(), rowParallelPipelines_[i], &rowParallelSpec); !o) return o;
-    if (Outcome o = make(kStorage[i].prefixSums(), threadPerRowPipelines_[i], &threadPerRowSpec); !o) return o;
+    for (std::size_t scheme = 0; scheme < schemes.size(); ++scheme) {
+      const VkSpecializationInfo spec{3, schemeEntries.data(), sizeof(schemes[scheme]), schemes[scheme].data()};
+      if (Outcome o = make(kStorage[i].prefixSums(), prefixSumPipelines_[scheme][i], &spec); !o) return o;
+    }
     const VkSpecializationInfo basisSpec{1, &basisEntry, sizeof(i), &i};
     if (Outcome o = make(shaders::evaluate_comp(), evaluatePipelines_[i], &basisSpec); !o) return o;
   }
@@ -243,9 +247,8 @@ void PrefilteredTechnique::destroy(const Gpu& gpu) {
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   std::vector<VkPipeline> pipelines{momentMapPipeline_, fixupArgsPipeline_, fixupPipeline_};
   for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
-    for (VkPipeline p : {rectifyPipelines_[i], rowParallelPipelines_[i], threadPerRowPipelines_[i], evaluatePipelines_[i]}) {
-      pipelines.push_back(p);
-    }
+    for (VkPipeline p : {rectifyPipelines_[i], evaluatePipelines_[i]}) pipelines.push_back(p);
+    for (const auto& scheme : prefixSumPipelines_) pipelines.push_back(scheme[i]);
   }
   for (VkPipeline pipeline : pipelines) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
@@ -419,7 +422,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   plan_.basis = basis;
   plan_.sets = sets;
   plan_.filtered = settings.filteredResampling;
-  plan_.threadPerRow = settings.prefixSums == PrefixSumScheme::ThreadPerRow;
+  plan_.prefixSums = settings.prefixSums;
   plan_.epipoleBlock = blockOnScreen;
   plan_.boundsTree = trimmed;
 
@@ -521,8 +524,10 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
     gpu.vk.vkCmdDispatch(cmd, groups(maps_.key.columns, gpu::TYN_PF_TEXEL_GROUP),
                          groups(maps_.key.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
   });
-  const VkPipeline prefix = plan_.threadPerRow ? threadPerRowPipelines_[plan_.basis] : rowParallelPipelines_[plan_.basis];
-  const std::uint32_t rowsPerGroup = plan_.threadPerRow ? gpu::TYN_PF_THREAD_PER_ROW_GROUP : gpu::TYN_PF_ROWS_PER_GROUP;
+  const VkPipeline prefix = prefixSumPipelines_[static_cast<std::size_t>(plan_.prefixSums)][plan_.basis];
+  const std::uint32_t rowsPerGroup = plan_.prefixSums == PrefixSumScheme::ThreadPerRow    ? gpu::TYN_PF_THREAD_PER_ROW_GROUP
+                                     : plan_.prefixSums == PrefixSumScheme::WorkgroupScan ? 1u
+                                                                                           : gpu::TYN_PF_ROWS_PER_GROUP;
   pass("prefiltered_prefix_sums", prefix, [&] {
     // One more layer builds the rows' min/max trees for the trimmed segments (prefix_sums.glsl).
     gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup),

@@ -88,8 +88,8 @@ class PrefilteredTechnique {
   bool pipelinesReady_ = false;
   VkPipeline momentMapPipeline_ = VK_NULL_HANDLE;
   std::array<VkPipeline, 6> rectifyPipelines_{};           // per storage variant
-  std::array<VkPipeline, 6> rowParallelPipelines_{};       // prefix sums, peters2017 App. C
-  std::array<VkPipeline, 6> threadPerRowPipelines_{};      // prefix sums, klehm2014 §3.3
+  // Prefix sums per PrefixSumScheme (row-parallel, thread per row, workgroup scan), per storage variant.
+  std::array<std::array<VkPipeline, 6>, 3> prefixSumPipelines_{};
   std::array<VkPipeline, 6> evaluatePipelines_{};          // specialised per storage variant
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;
   VkPipeline fixupPipeline_ = VK_NULL_HANDLE;
@@ -109,7 +109,7 @@ class PrefilteredTechnique {
     std::uint32_t basis = 0;
     std::uint32_t sets = 1;
     bool filtered = false;
-    bool threadPerRow = false;
+    PrefixSumScheme prefixSums = PrefixSumScheme::RowParallel;
     bool epipoleBlock = false;
     bool boundsTree = false;  // trimmed segments: the prefix-sum pass also builds the min/max trees
   } plan_;

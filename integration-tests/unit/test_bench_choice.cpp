@@ -1,6 +1,9 @@
 // tyndall-bench's summaries over the scenes and the profile choice from them, on made-up rows.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <string>
 
@@ -255,6 +258,42 @@ TEST(BenchChoice, NothingFastEnoughTakesTheFastest) {
     EXPECT_EQ(s[*choice.summary].parameters, "q");
     EXPECT_FALSE(choice.speedMet);
   }
+}
+
+// "Each profile as it runs" shows the profile table's row (the incumbent) where the run measured
+// it, even when the run would choose another (a GPU's run: the profiles still run the table), and
+// the run's choice where the table's row was not measured.
+TEST(BenchReport, TheProfilesAsTheyRunAreTheTablesRows) {
+  std::vector<Row> rows{row("a", "epipolar", "table", 5.0, 100.0, 0.01), row("a", "epipolar", "challenger", 1.0, 100.0, 0.005)};
+  for (Row& r : rows) r.light = "directional";
+  const auto perSceneParameters = [&](const ReportContext& context) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tyndall-test-bench-as-it-runs";
+    std::string error;
+    EXPECT_TRUE(writeReports(rows, context, dir.string(), error)) << error;
+    std::ifstream in(dir / "tradeoffs.md");
+    const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::filesystem::remove_all(dir);
+    const std::size_t perScene = doc.find("Per scene:");
+    EXPECT_NE(perScene, std::string::npos);
+    const std::size_t high = doc.find("| High | a | directional | `", perScene);
+    EXPECT_NE(high, std::string::npos);
+    if (perScene == std::string::npos || high == std::string::npos) return std::string();
+    const std::size_t start = high + std::string("| High | a | directional | `").size();
+    return doc.substr(start, doc.find('`', start) - start);
+  };
+  ReportContext context;
+  context.chooseWidth = 64;
+  context.chooseHeight = 36;
+  context.chooseShadowMap = 256;
+  context.incumbents = {{LightClass::Directional, {{Profile::High, "epipolar table"}}}};
+  // 100× past the margin and twice as accurate: the choice replaces the table's row for High...
+  const std::vector<Summary> s = summarize(rows, 64, 36, 256, LightClass::Directional);
+  EXPECT_EQ(s[*chooseProfiles(s, context.incumbents[LightClass::Directional])[0].summary].parameters, "challenger");
+  // ...but High as it runs is the table's row.
+  EXPECT_EQ(perSceneParameters(context), "table");
+  // Without the table's row in the run, the run's choice.
+  context.incumbents = {{LightClass::Directional, {{Profile::High, "epipolar not-measured"}}}};
+  EXPECT_EQ(perSceneParameters(context), "challenger");
 }
 
 }  // namespace

@@ -2,8 +2,11 @@
 # ran with (SCHEDULE) and the rows it must have (pillars: Reference + 2 configurations measured;
 # spot-lamp: Reference + epipolar measured, prefiltered skipped with its reason), each measured row
 # with a positive time, ratios to the Reference and the floor, a finite error and no NaN/Inf; each
-# row names its scene's light, and tradeoffs.md has a choice per profile for each kind of light.
-foreach(file results.csv results.json results.md choice.json tradeoffs.md pareto-64x36-256.svg pareto-64x36-256.png)
+# row names its scene's light, and tradeoffs.md has a choice per profile for each kind of light and
+# a plot per kind (pareto-64x36-256-directional, -local) beside the one over every scene.
+foreach(file results.csv results.json results.md choice.json tradeoffs.md pareto-64x36-256.svg pareto-64x36-256.png
+             pareto-64x36-256-directional.svg pareto-64x36-256-directional.png pareto-64x36-256-local.svg
+             pareto-64x36-256-local.png)
   if(NOT EXISTS "${DIR}/${file}")
     message(FATAL_ERROR "tyndall-bench did not write ${DIR}/${file}")
   endif()

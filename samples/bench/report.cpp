@@ -558,23 +558,33 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
     spec.title = std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) +
                  "² shadow map: median over the scenes (" + context.device + ")";
     const std::string stem = "pareto-" + groupName(w, h, map);
-    if (!writeFileWhole((dir / (stem + ".svg")).string(), plotSvg(points, spec), error)) return false;
-    std::vector<std::uint8_t> rgba8;
-    constexpr std::uint32_t kPngWidth = 1280, kPngHeight = 800;
-    plotRgba8(points, spec, kPngWidth, kPngHeight, rgba8);
-    if (!host::writePng((dir / (stem + ".png")).string(), kPngWidth, kPngHeight, rgba8, error)) return false;
+    // The plot as SVG and PNG, named `name`.svg/.png.
+    const auto writePlot = [&](const std::string& name, const std::vector<PlotPoint>& plotted, const PlotSpec& plotSpec) {
+      if (!writeFileWhole((dir / (name + ".svg")).string(), plotSvg(plotted, plotSpec), error)) return false;
+      std::vector<std::uint8_t> rgba8;
+      constexpr std::uint32_t kPngWidth = 1280, kPngHeight = 800;
+      plotRgba8(plotted, plotSpec, kPngWidth, kPngHeight, rgba8);
+      return host::writePng((dir / (name + ".png")).string(), kPngWidth, kPngHeight, rgba8, error);
+    };
+    if (!writePlot(stem, points, spec)) return false;
     summariesText += "\n### " + std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) +
                      "² shadow map\n\n![time against error](" + stem + ".svg)\n\n" +
                      summariesMarkdown(summaries, frontSummaries(points, summaryOf));
     // Per kind of light too, when the sweep has both: the summaries each kind's rows are chosen
-    // from, with that kind's Pareto front.
+    // from, with that kind's Pareto front and plot (pareto-WxH-N-directional, -local).
     if (groupChoice.size() > 1) {
       for (const ClassChoice& c : groupChoice) {
         std::vector<std::size_t> classSummaryOf;
         const std::vector<PlotPoint> classPoints = plotPoints(c.summaries, c.choice, classSummaryOf);
-        summariesText += std::string("\n#### ") +
-                         (c.lights == LightClass::Directional ? "Directional-light scenes" : "Spot- and point-light scenes") +
-                         " (the `" + to_string(c.lights) + "` rows are chosen from these)\n\n" +
+        const std::string kind = c.lights == LightClass::Directional ? "Directional-light scenes" : "Spot- and point-light scenes";
+        const std::string classStem = stem + "-" + to_string(c.lights);
+        PlotSpec classSpec = spec;
+        classSpec.title = std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) + "²: " +
+                          (c.lights == LightClass::Directional ? "directional lights" : "spot and point lights") + " (" +
+                          context.device + ")";
+        if (!writePlot(classStem, classPoints, classSpec)) return false;
+        summariesText += "\n#### " + kind + " (the `" + to_string(c.lights) + "` rows are chosen from these)\n\n" +
+                         "![time against error, " + to_string(c.lights) + "](" + classStem + ".svg)\n\n" +
                          summariesMarkdown(c.summaries, frontSummaries(classPoints, classSummaryOf));
       }
     }

@@ -637,19 +637,15 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   // choice (a sweep without the table's row). On the run docs/TRADEOFFS.md shows the two are the
   // same; on another device's or size's run the choice may differ, and the profiles run the table.
   // Its medians over every scene are what the goals are stated for.
-  const auto measuredAtChoice = [&](const std::string& configuration) {
-    return std::any_of(rows.begin(), rows.end(), [&](const Row& r) {
-      return r.configuration == configuration && r.measured && r.width == context.chooseWidth &&
-             r.height == context.chooseHeight && r.shadowMap == context.chooseShadowMap;
-    });
-  };
+  // The kind's summaries are its configurations measured at the choice's size.
   const auto asItRuns = [&](const ClassChoice& byClass, Profile profile, const Summary& chosen) {
-    if (auto table = context.incumbents.find(byClass.lights); table != context.incumbents.end()) {
-      if (auto row = table->second.find(profile); row != table->second.end() && measuredAtChoice(row->second)) {
-        return row->second;
-      }
-    }
-    return chosen.configuration;
+    const auto table = context.incumbents.find(byClass.lights);
+    if (table == context.incumbents.end()) return chosen.configuration;
+    const auto row = table->second.find(profile);
+    const bool measured = row != table->second.end() &&
+                          std::any_of(byClass.summaries.begin(), byClass.summaries.end(),
+                                      [&](const Summary& s) { return s.configuration == row->second; });
+    return measured ? row->second : chosen.configuration;
   };
   std::string perScene = "| profile | scene | lights | parameters | ms | speedup | × floor | relative RMSE | p99 | temporal |\n"
                          "|---|---|---|---|---|---|---|---|---|---|\n";

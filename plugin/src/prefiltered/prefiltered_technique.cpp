@@ -40,6 +40,14 @@ constexpr VkFormat kDepthBoundsFormat = VK_FORMAT_R16G16_UNORM;
 // The texel walk's depths (depth_bounds.h "Texel walk"): z1, z2 and w2 in 16-bit UNORM.
 constexpr VkFormat kTexelDepthsFormat = VK_FORMAT_R16G16B16A16_UNORM;
 
+// prefix_sums.glsl's specialisation per PrefixSumScheme (in its order): constant_id 0, threads per
+// row; 1, rows per workgroup (which also sizes the dispatch); 2, the workgroup scan's walk.
+constexpr std::array<std::array<std::uint32_t, 3>, 3> kPrefixSumSchemes{{
+    {gpu::TYN_PF_ROW_THREADS, gpu::TYN_PF_ROWS_PER_GROUP, 0u},
+    {1u, gpu::TYN_PF_THREAD_PER_ROW_GROUP, 0u},
+    {gpu::TYN_PF_SCAN_THREADS, 1u, 1u},
+}};
+
 // The storage variants' images, as shaders/prefiltered/storage_variants.glsl declares them.
 struct Storage {
   const char* name;
@@ -214,20 +222,15 @@ Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
   if (Outcome o = make(shaders::moment_shadow_map_comp(), momentMapPipeline_); !o) return o;
   if (Outcome o = make(shaders::epipole_fixup_args_comp(), fixupArgsPipeline_); !o) return o;
   if (Outcome o = make(shaders::epipole_fixup_comp(), fixupPipeline_); !o) return o;
-  // prefix_sums.glsl's workgroup size (constant_id 0: threads per row, 1: rows per group) and walk
-  // (2: the workgroup scan), per PrefixSumScheme.
+  // prefix_sums.glsl's workgroup size and walk per PrefixSumScheme (kPrefixSumSchemes).
   const std::array<VkSpecializationMapEntry, 3> schemeEntries{{{0, 0, 4}, {1, 4, 4}, {2, 8, 4}}};
-  const std::array<std::array<std::uint32_t, 3>, 3> schemes{{
-      {gpu::TYN_PF_ROW_THREADS, gpu::TYN_PF_ROWS_PER_GROUP, 0u},
-      {1u, gpu::TYN_PF_THREAD_PER_ROW_GROUP, 0u},
-      {gpu::TYN_PF_SCAN_THREADS, 1u, 1u},
-  }};
   // evaluate.comp's storage variant (constant_id 0).
   const VkSpecializationMapEntry basisEntry{0, 0, 4};
   for (std::uint32_t i = 0; i < kStorage.size(); ++i) {
     if (Outcome o = make(kStorage[i].rectify(), rectifyPipelines_[i]); !o) return o;
-    for (std::size_t scheme = 0; scheme < schemes.size(); ++scheme) {
-      const VkSpecializationInfo spec{3, schemeEntries.data(), sizeof(schemes[scheme]), schemes[scheme].data()};
+    for (std::size_t scheme = 0; scheme < kPrefixSumSchemes.size(); ++scheme) {
+      const VkSpecializationInfo spec{3, schemeEntries.data(), sizeof(kPrefixSumSchemes[scheme]),
+                                      kPrefixSumSchemes[scheme].data()};
       if (Outcome o = make(kStorage[i].prefixSums(), prefixSumPipelines_[scheme][i], &spec); !o) return o;
     }
     const VkSpecializationInfo basisSpec{1, &basisEntry, sizeof(i), &i};
@@ -524,10 +527,9 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint
     gpu.vk.vkCmdDispatch(cmd, groups(maps_.key.columns, gpu::TYN_PF_TEXEL_GROUP),
                          groups(maps_.key.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
   });
-  const VkPipeline prefix = prefixSumPipelines_[static_cast<std::size_t>(plan_.prefixSums)][plan_.basis];
-  const std::uint32_t rowsPerGroup = plan_.prefixSums == PrefixSumScheme::ThreadPerRow    ? gpu::TYN_PF_THREAD_PER_ROW_GROUP
-                                     : plan_.prefixSums == PrefixSumScheme::WorkgroupScan ? 1u
-                                                                                           : gpu::TYN_PF_ROWS_PER_GROUP;
+  const auto scheme = static_cast<std::size_t>(plan_.prefixSums);
+  const VkPipeline prefix = prefixSumPipelines_[scheme][plan_.basis];
+  const std::uint32_t rowsPerGroup = kPrefixSumSchemes[scheme][1];
   pass("prefiltered_prefix_sums", prefix, [&] {
     // One more layer builds the rows' min/max trees for the trimmed segments (prefix_sums.glsl).
     gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup),

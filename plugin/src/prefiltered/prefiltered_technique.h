@@ -88,7 +88,7 @@ class PrefilteredTechnique {
   bool pipelinesReady_ = false;
   VkPipeline momentMapPipeline_ = VK_NULL_HANDLE;
   std::array<VkPipeline, 6> rectifyPipelines_{};           // per storage variant
-  // Prefix sums per PrefixSumScheme (row-parallel, thread per row, workgroup scan), per storage variant.
+  // Prefix sums per PrefixSumScheme (kPrefixSumSchemes), per storage variant.
   std::array<std::array<VkPipeline, 6>, 3> prefixSumPipelines_{};
   std::array<VkPipeline, 6> evaluatePipelines_{};          // specialised per storage variant
   VkPipeline fixupArgsPipeline_ = VK_NULL_HANDLE;

@@ -4,9 +4,11 @@
 # device), the GPU time of each prefiltered pass (timestamps, median over the frames) and Tyndall's
 # total, next to the Reference's (and the ratio of the two: the speedup of the scattering passes,
 # the composite left out of both). Writes out/measure-prefiltered/* (MEASURE_OUT) and prints one
-# table row per run.
+# table row per run, then, for each variant measured on several scenes, the spread of its
+# evaluation pass over them ((max − min) / median; issue 4 asks < 15%).
 # Usage: scripts/measure-prefiltered.sh [build-dir] (default: build)
-# Environment: SCENES (default: the directional scenes), BASES (default: all six), SIZE (640x360),
+# Environment: SCENES (default: the directional scenes; a name from samples/scenes/ or a path to a
+#   scene file), BASES (default: all six), SIZE (640x360),
 #   SHADOW_MAP (1024), FRAMES (3), PREFILTERED (extra --prefiltered keys, e.g. "rows=512,columns=512").
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,17 +25,23 @@ frames="${FRAMES:-3}"
 extra="${PREFILTERED:-}"
 printf '| scene | variant | relative RMSE | moment map | rectify | prefix sums | evaluate | epipole block | prefiltered total ms | Reference ms | speedup |\n'
 printf '|---|---|---|---|---|---|---|---|---|---|---|\n'
-for scene in ${SCENES:-pillars fence forest window-room analytic-spheres analytic-boxes analytic-mixed}; do
+evaluations="$out/evaluations-$size.tsv"  # variant, scene, evaluate ms: the spread below
+: >"$evaluations"
+for entry in ${SCENES:-pillars fence forest window-room analytic-spheres analytic-boxes analytic-mixed}; do
+  case "$entry" in
+    *.json) file="$entry"; scene="$(basename "$entry" .json)" ;;
+    *) file="samples/scenes/$entry.json"; scene="$entry" ;;
+  esac
   ref="$out/$scene-$size-reference"
-  "$render" "samples/scenes/$scene.json" --technique reference --width "$w" --height "$h" \
+  "$render" "$file" --technique reference --width "$w" --height "$h" \
     --shadow-map-size "$map" --frames "$frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
   for basis in ${BASES:-moments4_64 moments4_128 moments6_64 moments6_96 moments6_192 fourier32}; do
     run="$out/$scene-$size-$basis"
-    "$render" "samples/scenes/$scene.json" --technique prefiltered --prefiltered "basis=$basis${extra:+,$extra}" \
+    "$render" "$file" --technique prefiltered --prefiltered "basis=$basis${extra:+,$extra}" \
       --width "$w" --height "$h" --shadow-map-size "$map" --frames "$frames" --timings "$run.json" \
       --aov-scattering "$run.exr" >/dev/null
     "$compare" "$run.exr" "$ref.exr" >"$run-error.json"
-    python3 - "$run.json" "$run-error.json" "$ref.json" "$scene" "$basis" <<'PY'
+    python3 - "$run.json" "$run-error.json" "$ref.json" "$scene" "$basis" "$evaluations" <<'PY'
 import json, sys
 t = json.load(open(sys.argv[1]))
 e = json.load(open(sys.argv[2]))
@@ -48,6 +56,25 @@ print(f"| {sys.argv[4]} | {sys.argv[5]} | {e['relativeRmse'] * 100:.2f}% | "
       f"{ms(p.get('prefiltered_moment_shadow_map', 0))} | {ms(p.get('prefiltered_rectify', 0))} | "
       f"{ms(p.get('prefiltered_prefix_sums', 0))} | {ms(p.get('prefiltered_evaluate', 0))} | {ms(block)} | "
       f"{ms(total)} | {ms(ref)} | {ref / total:.1f}x |")
+with open(sys.argv[6], "a") as f:
+    f.write(f"{sys.argv[5]}\t{sys.argv[4]}\t{p.get('prefiltered_evaluate', 0)}\n")
 PY
   done
 done
+python3 - "$evaluations" <<'PY'
+import statistics, sys
+rows = {}
+for line in open(sys.argv[1]):
+    basis, scene, ms = line.rstrip("\n").split("\t")
+    rows.setdefault(basis, []).append((scene, float(ms)))
+for basis, runs in rows.items():
+    if len(runs) < 2:
+        continue
+    times = [ms for _, ms in runs]
+    median = statistics.median(times)
+    spread = (max(times) - min(times)) / median if median > 0 else 0.0
+    lo = min(runs, key=lambda r: r[1])
+    hi = max(runs, key=lambda r: r[1])
+    print(f"\n{basis}: evaluate {lo[1]:.3g} ms ({lo[0]}) to {hi[1]:.3g} ms ({hi[0]}) over {len(runs)} scenes, "
+          f"(max - min) / median {spread * 100:.0f}% (issue 4 asks < 15%)")
+PY

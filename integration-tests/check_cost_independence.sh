@@ -11,11 +11,10 @@ repo="$(cd "$(dirname "$0")/.." && pwd)"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 python3 "$repo/scripts/generate-forest.py" --check || fail "samples/scenes/forest.json is not the generator's"
 rm -rf "$work"
-# Two sample scenes and one generated forest: each render takes most of its time starting up.
-COST_OUT="$work" SIZE=32x18 SHADOW_MAP=256 FRAMES=1 SCENES="pillars forest" SPACINGS=16 \
+COST_OUT="$work" SIZE=32x18 SHADOW_MAP=256 FRAMES=1 SPACINGS="16 8" \
   "$repo/scripts/measure-cost-independence.sh" "$build"
 for run in defaults one-lookup; do
-  for scene in pillars forest forest-16; do
+  for scene in pillars fence forest window-room forest-16 forest-8; do
     grep -q "^| $scene | moments6_64 | [0-9.]*% | " "$work/$run.md" || fail "no $scene row in $work/$run.md"
   done
   grep -q "^moments6_64, the sample scenes: evaluate .* / median [0-9]*%$" "$work/$run.md" ||

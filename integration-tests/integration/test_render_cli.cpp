@@ -71,6 +71,8 @@ TEST(RenderCli, BadInputFailsAndWritesNothing) {
       {scene, "--profile", "auto", "--budget-ms", "-2"},
       {scene, "--profile", "auto", "--budget-ms", "nan"},
       {scene, "--unknown-flag"},
+      {scene, "--pipelines", "lazy"},
+      {scene, "--pipelines"},
       {scene, "--output"},
       {(dir / "missing.json").string()},
       {broken.string()},
@@ -81,6 +83,25 @@ TEST(RenderCli, BadInputFailsAndWritesNothing) {
     EXPECT_NE(run(args), 0);
     EXPECT_FALSE(fs::exists(png));
   }
+}
+
+// --pipelines picks when the context compiles (RenderOptions::pipelineCreation); at-create without it.
+TEST(RenderCli, PipelinesOption) {
+  auto parse = [](std::vector<const char*> args, samples::RenderOptions& options) {
+    args.insert(args.begin(), "tyndall-render");
+    bool help = false;
+    std::string error;
+    const bool ok = samples::parseCommandLine(static_cast<int>(args.size()), args.data(), options, help, error);
+    EXPECT_TRUE(ok) << error;
+    return ok;
+  };
+  samples::RenderOptions defaults, lazy, eager;
+  ASSERT_TRUE(parse({"scene.json"}, defaults));
+  EXPECT_EQ(defaults.pipelineCreation, PipelineCreation::AtCreate);
+  ASSERT_TRUE(parse({"scene.json", "--pipelines", "on-first-use"}, lazy));
+  EXPECT_EQ(lazy.pipelineCreation, PipelineCreation::OnFirstUse);
+  ASSERT_TRUE(parse({"scene.json", "--pipelines", "on-first-use", "--pipelines", "at-create"}, eager));
+  EXPECT_EQ(eager.pipelineCreation, PipelineCreation::AtCreate);
 }
 
 }  // namespace

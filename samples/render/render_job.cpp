@@ -39,8 +39,12 @@ std::string usage() {
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
          "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--prefiltered KEY=VALUE[,KEY=VALUE...]]\n"
-         "         [--debug-view samples|fixup FILE.png] [--march-threads N]\n"
+         "         [--debug-view samples|fixup FILE.png] [--march-threads N] [--pipelines at-create|on-first-use]\n"
          "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
+         "  --pipelines: compile every technique's pipelines when the context is created (at-create, the\n"
+         "    default: no frame compiles one) or each technique's in the first frame that runs it\n"
+         "    (on-first-use: a faster start for scripts that render one technique; GPU timings unchanged,\n"
+         "    the compile is on the CPU before the frame is submitted)\n"
          "  --march-threads: threads per marched epipolar sample, a power of two up to 64 (default: 1 on a\n"
          "    CPU driver, 8 on a GPU; ContextDesc::marchThreadsPerSample); with 1 the fix-up walks a\n"
          "    directional light's pixels one per thread, otherwise each in a workgroup of 64\n"
@@ -110,6 +114,16 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       if (!parseUint(v, 1, 64, options.marchThreadsPerSample) ||
           (options.marchThreadsPerSample & (options.marchThreadsPerSample - 1)) != 0) {
         error = "--march-threads must be a power of two in [1, 64] (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--pipelines") {
+      if (!value(v)) return false;
+      if (v == "at-create") {
+        options.pipelineCreation = PipelineCreation::AtCreate;
+      } else if (v == "on-first-use") {
+        options.pipelineCreation = PipelineCreation::OnFirstUse;
+      } else {
+        error = "--pipelines must be at-create or on-first-use (got '" + v + "')";
         return false;
       }
     } else if (arg == "--frames") {

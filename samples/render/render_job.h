@@ -40,8 +40,9 @@ struct RenderOptions {
   std::string debugViewPng;
   VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  ///< not on the command line
   std::uint32_t framesInFlight = 2;                           ///< not on the command line
-  /// Not on the command line: tyndall-render compiles every pipeline up front; the tests, which
-  /// create a context per render and use one or two techniques, compile on first use.
+  /// --pipelines at-create|on-first-use: tyndall-render compiles every pipeline up front unless
+  /// told otherwise; the tests, which create a context per render and use one or two techniques,
+  /// compile on first use.
   PipelineCreation pipelineCreation = PipelineCreation::AtCreate;
   /// --march-threads: ContextDesc::marchThreadsPerSample (0: by device).
   std::uint32_t marchThreadsPerSample = 0;

@@ -29,17 +29,10 @@ for run in defaults one-lookup; do
   MEASURE_OUT="$out/$run" PREFILTERED="$extra" scripts/measure-prefiltered.sh "$build" | tee "$out/$run.md"
   # The issue's check is over its four scenes (the default SCENES); the forests show how the time
   # follows the trunks.
-  python3 - "$out/$run/evaluations-$SIZE.tsv" <<'PY' | tee -a "$out/$run.md"
-import statistics, sys
-rows = [line.rstrip("\n").split("\t") for line in open(sys.argv[1])]
-for title, keep in (("the sample scenes", lambda s: not s.startswith("forest-")),
-                    ("the forests (forest is spacing 2)", lambda s: s.startswith("forest"))):
-    for basis in dict.fromkeys(r[0] for r in rows):
-        times = [float(ms) for b, scene, ms in rows if b == basis and keep(scene)]
-        if len(times) < 2:
-            continue
-        spread = (max(times) - min(times)) / statistics.median(times)
-        print(f"{basis}, {title}: evaluate {min(times):.3g} to {max(times):.3g} ms, (max - min) / median {spread * 100:.0f}%")
-PY
+  evaluations="$out/$run/evaluations-$SIZE.tsv"
+  python3 scripts/evaluation-spread.py "$evaluations" --exclude-prefix forest- --title "the sample scenes" |
+    tee -a "$out/$run.md"
+  python3 scripts/evaluation-spread.py "$evaluations" --prefix forest --title "the forests (forest is spacing 2)" |
+    tee -a "$out/$run.md"
   echo
 done

@@ -63,20 +63,5 @@ with open(sys.argv[6], "a") as f:
 PY
   done
 done
-python3 - "$evaluations" <<'PY'
-import statistics, sys
-rows = {}
-for line in open(sys.argv[1]):
-    basis, scene, ms = line.rstrip("\n").split("\t")
-    rows.setdefault(basis, []).append((scene, float(ms)))
-for basis, runs in rows.items():
-    if len(runs) < 2:
-        continue
-    times = [ms for _, ms in runs]
-    median = statistics.median(times)
-    spread = (max(times) - min(times)) / median if median > 0 else 0.0
-    lo = min(runs, key=lambda r: r[1])
-    hi = max(runs, key=lambda r: r[1])
-    print(f"\n{basis}: evaluate {lo[1]:.3g} ms ({lo[0]}) to {hi[1]:.3g} ms ({hi[0]}) over {len(runs)} scenes, "
-          f"(max - min) / median {spread * 100:.0f}% (issue 4 asks < 15%)")
-PY
+echo
+python3 scripts/evaluation-spread.py "$evaluations"

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # scripts/bundle-binaries.sh and scripts/measure-gpu.sh end to end at a tiny size: the bundle loads
 # every library but the C runtime from itself (bundle-binaries.sh fails otherwise), its programs
-# run from it, and measure-gpu.sh gathers a table row per run and names the device.
+# run from it, and measure-gpu.sh gathers a table row per run (the cost part's two runs too) and
+# names the device.
 # Usage: check_measure_scripts.sh BUILD_DIR WORK_DIR (absolute paths)
 set -euo pipefail
 build="$1"
@@ -9,8 +10,9 @@ work="$2"
 repo="$(cd "$(dirname "$0")/.." && pwd)"
 rm -rf "$work"
 "$repo/scripts/bundle-binaries.sh" "$build" "$work/bundle"
-LD_LIBRARY_PATH="$work/bundle/lib" GPU_OUT="$work/gpu" PARTS="epipolar prefiltered" FRAMES=2 REFERENCE_FRAMES=2 \
+LD_LIBRARY_PATH="$work/bundle/lib" GPU_OUT="$work/gpu" PARTS="epipolar prefiltered cost" FRAMES=2 REFERENCE_FRAMES=2 \
   EPIPOLAR_SIZES=32x18 EPIPOLAR_MAPS=256 PREFILTERED_SIZES=32x18 PREFILTERED_MAPS=256 SCENES=pillars \
+  COST_SIZE=32x18 COST_MAP=256 SPACINGS=16 \
   PROFILES=performance BASES=moments4_64 "$repo/scripts/measure-gpu.sh" "$work/bundle"
 keep="$work/gpu/keep"
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -20,6 +22,12 @@ grep -q '^| pillars | moments4_64 | [0-9.]*% | ' "$keep/prefiltered.md" || fail 
 grep -q '^### 32x18, 256² map' "$keep/prefiltered.md" || fail "no size heading in $keep/prefiltered.md"
 grep -q '^epipolar: [0-9]* s$' "$keep/measure-gpu.log" || fail "no epipolar timing in the log"
 grep -q '^prefiltered: [0-9]* s$' "$keep/measure-gpu.log" || fail "no prefiltered timing in the log"
+for run in defaults one-lookup; do
+  grep -q "^## $run" "$keep/cost-independence.md" || fail "no $run run in $keep/cost-independence.md"
+done
+[ "$(grep -c '^| forest-16 | [a-z0-9_]* | [0-9.]*% | ' "$keep/cost-independence.md")" -eq 2 ] ||
+  fail "expected a forest-16 row per run in $keep/cost-independence.md"
+grep -q '^cost: [0-9]* s$' "$keep/measure-gpu.log" || fail "no cost timing in the log"
 grep -q '^device: ' "$keep/measure-gpu.log" && ! grep -q '^device: unknown' "$keep/measure-gpu.log" ||
   fail "the log does not name the device"
 echo "bundle and measure-gpu.sh: ok"

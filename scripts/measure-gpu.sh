@@ -6,16 +6,19 @@
 #   epipolar     scripts/bench-epipolar.sh with 20 frames (12 for the Reference): EPIPOLAR.md "On a GPU"
 #   prefiltered  scripts/measure-prefiltered.sh at 1280x720 and 1920x1080 with 1024² and 2048² maps,
 #                every storage variant, 20 frames: PREFILTERED.md "Cost on a GPU"
+#   cost         scripts/measure-cost-independence.sh at 1920x1080 with a 2048² map, 20 frames: the
+#                GPU's figures for PREFILTERED.md "Cost independence" (measured on lavapipe so far)
 # The small files to keep are gathered in $GPU_OUT/keep/ (at most 8: results.json, the Markdown
 # tables, the epipolar rows, the log). Runs on whatever Vulkan device is present (TYNDALL_DEVICE
 # picks one); on lavapipe pick small sizes (below) or it takes hours. A machine without this
 # project's packages runs the bundle of scripts/bundle-binaries.sh: LD_LIBRARY_PATH=DEST/lib
 # scripts/measure-gpu.sh DEST.
 # Usage: scripts/measure-gpu.sh [build-dir] (default: build)
-# Environment: PARTS (tradeoffs epipolar prefiltered), GPU_OUT (out/gpu), FRAMES (20);
+# Environment: PARTS (tradeoffs epipolar prefiltered cost), GPU_OUT (out/gpu), FRAMES (20);
 #   TRADEOFF_SIZES (1920x1080); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096);
-#   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); SCENES (names, space-
-#   separated) passes through to the scripts and the bench (each has its own default).
+#   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); COST_SIZE (1920x1080),
+#   COST_MAP (2048), SPACINGS (the cost part's forests); SCENES (names, space-separated) passes
+#   through to the scripts and the bench (each has its own default).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -29,7 +32,7 @@ log="$out/keep/measure-gpu.log"
 : >"$log"
 say() { echo "$*" | tee -a "$log" >&2; }
 
-for part in ${PARTS:-tradeoffs epipolar prefiltered}; do
+for part in ${PARTS:-tradeoffs epipolar prefiltered cost}; do
   start=$SECONDS
   case "$part" in
     tradeoffs)
@@ -55,7 +58,11 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered}; do
         done
       done
       ;;
-    *) echo "unknown part: $part (tradeoffs, epipolar, prefiltered)" >&2; exit 1 ;;
+    cost)
+      COST_OUT="$out/cost" SIZE="${COST_SIZE:-1920x1080}" SHADOW_MAP="${COST_MAP:-2048}" FRAMES="$frames" \
+        scripts/measure-cost-independence.sh "$build" >"$out/keep/cost-independence.md" 2>>"$log"
+      ;;
+    *) echo "unknown part: $part (tradeoffs, epipolar, prefiltered, cost)" >&2; exit 1 ;;
   esac
   say "$part: $((SECONDS - start)) s"
 done
@@ -64,7 +71,7 @@ device="$(python3 - "$out" <<'PY'
 import glob, json, os, sys
 out = sys.argv[1]
 candidates = [f"{out}/keep/tradeoffs-results.json"] + sorted(glob.glob(f"{out}/epipolar/*-reference.json")) + \
-    sorted(glob.glob(f"{out}/prefiltered/*-reference.json"))
+    sorted(glob.glob(f"{out}/prefiltered/*-reference.json")) + sorted(glob.glob(f"{out}/cost/defaults/*-reference.json"))
 for path in candidates:
     if os.path.exists(path):
         print(json.load(open(path))["device"])

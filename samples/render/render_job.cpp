@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <map>
 #include <type_traits>
 
@@ -20,10 +21,19 @@ namespace tyndall::samples {
 
 namespace {
 
-bool parseProfile(const std::string& name, Profile& out) {
-  for (Profile p : {Profile::Reference, Profile::High, Profile::Balanced, Profile::Performance, Profile::Auto}) {
-    if (name == to_string(p)) {
-      out = p;
+// An option's names for the values it picks: the library's where it has them.
+const char* optionName(Profile profile) { return to_string(profile); }
+const char* optionName(Technique technique) { return to_string(technique); }
+const char* optionName(PipelineCreation creation) {
+  return creation == PipelineCreation::AtCreate ? "at-create" : "on-first-use";
+}
+
+// The value among `values` named `name`, for the options that pick one by name.
+template <typename E>
+bool parseName(const std::string& name, std::initializer_list<E> values, E& out) {
+  for (E value : values) {
+    if (name == optionName(value)) {
+      out = value;
       return true;
     }
   }
@@ -73,7 +83,8 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       return true;
     } else if (arg == "--profile") {
       if (!value(v)) return false;
-      if (!parseProfile(v, options.profile)) {
+      if (!parseName(v, {Profile::Reference, Profile::High, Profile::Balanced, Profile::Performance, Profile::Auto},
+                     options.profile)) {
         error = "--profile must be one of reference, high, balanced, performance, auto (got '" + v + "')";
         return false;
       }
@@ -86,13 +97,7 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       }
     } else if (arg == "--technique") {
       if (!value(v)) return false;
-      if (v == "reference") {
-        options.technique = Technique::Reference;
-      } else if (v == "epipolar") {
-        options.technique = Technique::Epipolar;
-      } else if (v == "prefiltered") {
-        options.technique = Technique::Prefiltered;
-      } else {
+      if (!parseName(v, {Technique::Reference, Technique::Epipolar, Technique::Prefiltered}, options.technique)) {
         error = "--technique must be one of: reference, epipolar, prefiltered (got '" + v + "')";
         return false;
       }
@@ -118,11 +123,7 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       }
     } else if (arg == "--pipelines") {
       if (!value(v)) return false;
-      if (v == "at-create") {
-        options.pipelineCreation = PipelineCreation::AtCreate;
-      } else if (v == "on-first-use") {
-        options.pipelineCreation = PipelineCreation::OnFirstUse;
-      } else {
+      if (!parseName(v, {PipelineCreation::AtCreate, PipelineCreation::OnFirstUse}, options.pipelineCreation)) {
         error = "--pipelines must be at-create or on-first-use (got '" + v + "')";
         return false;
       }

@@ -28,4 +28,6 @@ for part in "row depth bounds" "segmented reconstruction" "trimmed segments" "te
   note defaults | grep -q "$part" || fail "the defaults' note lacks '$part': $(note defaults)"
   ! note one-lookup | grep -q "$part" || fail "the one-lookup note has '$part': $(note one-lookup)"
 done
+# The one-lookup run compared against the defaults' Reference renders and rendered none of its own.
+! ls "$work/one-lookup/"*-reference.* >/dev/null 2>&1 || fail "the one-lookup run rendered the Reference again"
 echo "measure-cost-independence.sh: ok"

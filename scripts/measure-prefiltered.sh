@@ -11,7 +11,9 @@
 # Usage: scripts/measure-prefiltered.sh [build-dir] (default: build)
 # Environment: SCENES (default: the directional scenes; a name from samples/scenes/ or a path to a
 #   scene file), BASES (default: all six), SIZE (640x360),
-#   SHADOW_MAP (1024), FRAMES (3), PREFILTERED (extra --prefiltered keys, e.g. "rows=512,columns=512").
+#   SHADOW_MAP (1024), FRAMES (3), PREFILTERED (extra --prefiltered keys, e.g. "rows=512,columns=512"),
+#   REFERENCE_FROM (the MEASURE_OUT of an earlier run with the same SIZE, SHADOW_MAP and FRAMES:
+#   its Reference renders are compared against and timed instead of rendering them again).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build="${1:-build}"
@@ -34,9 +36,14 @@ for entry in ${SCENES:-pillars fence forest window-room analytic-spheres analyti
     *.json) file="$entry"; scene="$(basename "$entry" .json)" ;;
     *) file="samples/scenes/$entry.json"; scene="$entry" ;;
   esac
-  ref="$out/$scene-$size-reference"
-  "$render" --pipelines on-first-use "$file" --technique reference --width "$w" --height "$h" \
-    --shadow-map-size "$map" --frames "$frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
+  if [ -n "${REFERENCE_FROM:-}" ]; then
+    ref="$REFERENCE_FROM/$scene-$size-reference"
+    [ -f "$ref.exr" ] && [ -f "$ref.json" ] || { echo "no Reference render $ref.{exr,json}" >&2; exit 1; }
+  else
+    ref="$out/$scene-$size-reference"
+    "$render" --pipelines on-first-use "$file" --technique reference --width "$w" --height "$h" \
+      --shadow-map-size "$map" --frames "$frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
+  fi
   for basis in ${BASES:-moments4_64 moments4_128 moments6_64 moments6_96 moments6_192 fourier32}; do
     run="$out/$scene-$size-$basis"
     "$render" --pipelines on-first-use "$file" --technique prefiltered --prefiltered "basis=$basis${extra:+,$extra}" \

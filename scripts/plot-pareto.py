@@ -13,7 +13,11 @@ import math
 import os
 import sys
 
-import matplotlib
+try:
+    import matplotlib
+except ImportError:
+    sys.exit(f"plot-pareto.py: {sys.executable} has no matplotlib: apt-get install python3-matplotlib "
+             "(scripts/install-deps.sh), or run it with a python3 that has it")
 
 matplotlib.use("Agg")  # files only, no display
 import matplotlib.pyplot as plt  # noqa: E402
@@ -46,18 +50,16 @@ def log_axis(axis, formatter):
     axis.set_minor_formatter(FuncFormatter(lambda *_: ""))
 
 
-def widen_to_a_decade(ax, finite, y_of):
-    """Limits with a margin, each axis spanning at least a decade so that it carries tick labels."""
-    for values, set_limits in (([p["x"] for p in finite], ax.set_xlim), ([y_of(p) for p in finite], ax.set_ylim)):
-        if not values:
-            continue
-        lo, hi = math.log10(min(values)), math.log10(max(values))
-        margin = 0.05 * (hi - lo)
-        lo, hi = lo - margin, hi + margin
-        if hi - lo < 1.0:
-            middle = 0.5 * (lo + hi)
-            lo, hi = middle - 0.5, middle + 0.5
-        set_limits(10 ** lo, 10 ** hi)
+def decade_limits(values):
+    """Log-axis limits around `values` with a margin, spanning at least a decade so that the axis
+    carries tick labels."""
+    lo, hi = math.log10(min(values)), math.log10(max(values))
+    margin = 0.05 * (hi - lo)
+    lo, hi = lo - margin, hi + margin
+    if hi - lo < 1.0:
+        middle = 0.5 * (lo + hi)
+        lo, hi = middle - 0.5, middle + 0.5
+    return 10 ** lo, 10 ** hi
 
 
 def draw(plot, outdir):
@@ -68,8 +70,9 @@ def draw(plot, outdir):
     if len(finite) < len(points):
         notes.append(f"{len(points) - len(finite)} non-finite, not drawn")
     # A configuration with no error at all would vanish from a log axis: drawn at its bottom.
-    positive = [p["y"] for p in finite if p["y"] > 0]
-    y_floor = min(positive) / 2 if positive else 1e-3
+    xlim = decade_limits([p["x"] for p in finite] or [1.0])
+    ylim = decade_limits([p["y"] for p in finite if p["y"] > 0] or [0.01])
+    y_floor = ylim[0]
     at_floor = sum(1 for p in finite if p["y"] <= 0)
     if at_floor:
         notes.append(f"{at_floor} with zero error, drawn at the axis minimum")
@@ -90,7 +93,7 @@ def draw(plot, outdir):
     for k, name in enumerate(series):
         members = [p for p in finite if p["series"] == name]
         ax.scatter([p["x"] for p in members], [y_of(p) for p in members], s=36, marker=SHAPES[k % len(SHAPES)],
-                   color=COLOURS[k % len(COLOURS)], label=name, zorder=3)
+                   color=COLOURS[k % len(COLOURS)], label=name, zorder=3, clip_on=False)
 
     front = sorted((p for p in finite if p["front"] > 0), key=lambda p: p["front"])
     if front:
@@ -104,7 +107,7 @@ def draw(plot, outdir):
     picks = [p for p in finite if p["marker"]]
     if picks:
         ax.scatter([p["x"] for p in picks], [y_of(p) for p in picks], s=220, facecolors="none",
-                   edgecolors="black", linewidths=1.8, zorder=4, label="picked for a profile")
+                   edgecolors="black", linewidths=1.8, zorder=4, label="picked for a profile", clip_on=False)
         for p in picks:
             ax.annotate(p["marker"], (p["x"], y_of(p)), xytext=(10, -14), textcoords="offset points", fontsize=10,
                         fontweight="bold", zorder=5)
@@ -123,7 +126,8 @@ def draw(plot, outdir):
     handles += [Line2D([], [], linestyle="none")] * len(listing)
     ax.legend(handles, labels + listing, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
               frameon=False, fontsize=9, handlelength=1.5)
-    widen_to_a_decade(ax, finite, y_of)
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
     if not finite:
         ax.text(0.5, 0.5, "no drawable point", transform=ax.transAxes, ha="center", va="center")
         ax.xaxis.set_major_locator(NullLocator())

@@ -4,9 +4,11 @@
 // tradeoffs` writes with the document from the same run (tyndall-bench's choice.json).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -59,6 +61,27 @@ TEST(TradeoffsDocument, AgreesWithTheProfileTable) {
                 chosen.technique + " " + chosen.parameters);
     }
   }
+}
+
+// The committed choice is the one tyndall-bench makes from the kept rows today
+// (docs/data/tradeoffs-lavapipe-results.json, which TRADEOFFS.md was written from), so that neither
+// the data nor the choice rule can change without the other being written again.
+TEST(TradeoffsDocument, TheChoiceDataIsTheKeptRowsChoice) {
+  const std::string docs(TYNDALL_DOCS_DIR);
+  std::vector<samples::bench::Row> rows;
+  samples::bench::ReportContext context;
+  std::string error;
+  ASSERT_TRUE(samples::bench::readResults(docs + "/data/tradeoffs-lavapipe-results.json", rows, context, error)) << error;
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tyndall-test-tradeoffs-choice";
+  ASSERT_TRUE(samples::bench::writeReports(rows, context, dir.string(), error)) << error;
+  std::ifstream written(dir / "choice.json");
+  std::ifstream committed(docs + "/data/tradeoffs-lavapipe-choice.json");
+  const nlohmann::json writtenJson = nlohmann::json::parse(written, nullptr, false);
+  const nlohmann::json committedJson = nlohmann::json::parse(committed, nullptr, false);
+  std::filesystem::remove_all(dir);
+  ASSERT_TRUE(writtenJson.is_array());
+  EXPECT_EQ(committedJson, writtenJson) << "write it again: FROM=docs/data/tradeoffs-lavapipe-results.json "
+                                           "scripts/measure.sh tradeoffs";
 }
 
 }  // namespace

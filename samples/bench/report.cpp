@@ -15,7 +15,6 @@
 #include "pareto.h"
 #include "profiles.h"
 #include "render_job.h"
-#include "tyndall_host/renderer.h"
 #include "tyndall_host/scene.h"
 
 namespace tyndall::samples::bench {

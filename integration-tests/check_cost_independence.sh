@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# scripts/measure-cost-independence.sh end to end at a tiny size: both configurations measured on
+# scripts/measure.sh cost end to end at a tiny size: both configurations measured on
 # sample scenes and a generated forest, a row each, and the evaluation's spread printed over the
 # sample scenes and over the forests; scripts/generate-forest.py reproduces the committed
 # forest (its --spacing option must not change the default).
@@ -12,7 +12,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 python3 "$repo/scripts/generate-forest.py" --check || fail "samples/scenes/forest.json is not the generator's"
 rm -rf "$work"
 COST_OUT="$work" SIZE=32x18 SHADOW_MAP=256 FRAMES=1 SPACINGS="16 8" \
-  "$repo/scripts/measure-cost-independence.sh" "$build"
+  "$repo/scripts/measure.sh" cost "$build"
 for run in defaults one-lookup; do
   for scene in pillars fence forest window-room forest-16 forest-8; do
     grep -q "^| $scene | moments6_64 | [0-9.]*% | " "$work/$run.md" || fail "no $scene row in $work/$run.md"
@@ -30,4 +30,4 @@ for part in "row depth bounds" "segmented reconstruction" "trimmed segments" "te
 done
 # The one-lookup run compared against the defaults' Reference renders and rendered none of its own.
 ! ls "$work/one-lookup/"*-reference.* >/dev/null 2>&1 || fail "the one-lookup run rendered the Reference again"
-echo "measure-cost-independence.sh: ok"
+echo "measure.sh cost: ok"

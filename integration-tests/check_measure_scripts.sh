@@ -2,7 +2,8 @@
 # scripts/bundle-binaries.sh and scripts/measure-gpu.sh end to end at a tiny size: the bundle loads
 # every library but the C runtime from itself (bundle-binaries.sh fails otherwise), its programs
 # run from it, and measure-gpu.sh gathers a table row per run (the cost part's two runs too) and
-# names the device.
+# names the device; scripts/measure.sh's reference and memory parts print a row per run, and an
+# unknown part is refused with the usage text.
 # Usage: check_measure_scripts.sh BUILD_DIR WORK_DIR (absolute paths)
 set -euo pipefail
 build="$1"
@@ -30,4 +31,15 @@ done
 grep -q '^cost: [0-9]* s$' "$keep/measure-gpu.log" || fail "no cost timing in the log"
 grep -q '^device: ' "$keep/measure-gpu.log" && ! grep -q '^device: unknown' "$keep/measure-gpu.log" ||
   fail "the log does not name the device"
-echo "bundle and measure-gpu.sh: ok"
+table="$(LD_LIBRARY_PATH="$work/bundle/lib" REFERENCE_OUT="$work/reference" SCENES=pillars SIZES=32x18 FRAMES=2 \
+  "$repo/scripts/measure.sh" reference "$work/bundle")"
+grep -q '^| pillars | 32x18 | 2048 | [0-9.]* | ' <<<"$table" || fail "no reference row: $table"
+table="$(LD_LIBRARY_PATH="$work/bundle/lib" MEMORY_OUT="$work/memory" SCENES=pillars SIZES=32x18 \
+  PROFILES=performance SHADOW_MAP=256 \
+  "$repo/scripts/measure.sh" memory "$work/bundle")"
+grep -q '^| pillars | performance | epipolar | [0-9.]* |$' <<<"$table" || fail "no memory row: $table"
+status=0
+"$repo/scripts/measure.sh" no-such-part >/dev/null 2>"$work/usage.txt" || status=$?
+[ "$status" -eq 2 ] && grep -q '^usage: scripts/measure.sh PART' "$work/usage.txt" &&
+  grep -q 'unknown part: no-such-part' "$work/usage.txt" || fail "an unknown part was not refused (status $status)"
+echo "bundle, measure-gpu.sh and measure.sh: ok"

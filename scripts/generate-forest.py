@@ -10,7 +10,7 @@ depend on the Python version's random module). Run from anywhere:
     python3 scripts/generate-forest.py --spacing 4 --out out/forest-4.json   # a sparser variant
 
 --spacing changes the grid, and so the number of trunks (2,574 at the default 2; 56 at 16, 10,094 at 1),
-and, below 2, the jitter (0.35 · spacing); scripts/measure-cost-independence.sh uses it for forests of 56 to 10,094 trunks.
+and, below 2, the jitter (0.35 · spacing); scripts/measure.sh cost uses it for forests of 56 to 10,094 trunks.
 """
 import argparse
 import json

@@ -9,8 +9,8 @@ packages=(
   glslang-tools spirv-tools
   libglm-dev libopencolorio-dev libopenexr-dev libimath-dev libstb-dev
   nlohmann-json3-dev libtinygltf-dev libgtest-dev libgmock-dev
-  python3  # scripts/measure-reference.sh, scripts/generate-forest.py
-  locales  # a decimal-comma locale for BenchPlotSvg.DoesNotDependOnTheCLocale (generated below)
+  python3  # scripts/measure.sh's tables, scripts/generate-forest.py
+  python3-matplotlib  # scripts/plot-pareto.py: tyndall-bench's plots
 )
 
 missing=()
@@ -25,9 +25,3 @@ if [ ${#missing[@]} -gt 0 ]; then
   "${sudo_cmd[@]}" apt-get install -y --no-install-recommends "${missing[@]}"
 fi
 
-# tyndall-bench's SVG must not write "0,5" under a decimal-comma C locale; its test needs one.
-if ! locale -a 2>/dev/null | grep -qix 'de_DE\.utf-\?8'; then
-  "${sudo_cmd[@]}" sed -i 's/^# *\(de_DE\.UTF-8 UTF-8\)/\1/' /etc/locale.gen
-  grep -q '^de_DE\.UTF-8 UTF-8' /etc/locale.gen || echo 'de_DE.UTF-8 UTF-8' | "${sudo_cmd[@]}" tee -a /etc/locale.gen >/dev/null
-  "${sudo_cmd[@]}" locale-gen
-fi

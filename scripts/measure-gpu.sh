@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # The measurements behind the documents' GPU sections, in one run on a GPU, each part timed:
 #   tradeoffs    tyndall-bench's default sweep at 1920x1080 with a 2048² map (the issue's goals):
-#                docs/TRADEOFFS-H200.md comes from its results.json, written again here with
-#                FROM=$GPU_OUT/tradeoffs/results.json DOC=docs/TRADEOFFS-H200.md scripts/tradeoffs.sh
-#   epipolar     scripts/bench-epipolar.sh with 20 frames (12 for the Reference): EPIPOLAR.md "On a GPU"
-#   prefiltered  scripts/measure-prefiltered.sh at 1280x720 and 1920x1080 with 1024² and 2048² maps,
+#                docs/TRADEOFFS-H200.md comes from its results.json, written again here (with the
+#                plots, which need matplotlib) by FROM=$GPU_OUT/keep/tradeoffs-results.json
+#                DOC=docs/TRADEOFFS-H200.md scripts/measure.sh tradeoffs
+#   epipolar     scripts/measure.sh epipolar with 20 frames (12 for the Reference): EPIPOLAR.md "On a GPU"
+#   prefiltered  scripts/measure.sh prefiltered at 1280x720 and 1920x1080 with 1024² and 2048² maps,
 #                every storage variant, 20 frames: PREFILTERED.md "Cost on a GPU"
-#   cost         scripts/measure-cost-independence.sh at 1920x1080 with a 2048² map, 20 frames: the
-#                GPU's figures for PREFILTERED.md "Cost independence" (measured on lavapipe so far)
+#   cost         scripts/measure.sh cost at 1920x1080 with a 2048² map, 20 frames: the GPU's
+#                figures for PREFILTERED.md "Cost independence" (measured on lavapipe so far)
 # The small files to keep are gathered in $GPU_OUT/keep/ (at most 8: results.json, the Markdown
 # tables, the epipolar rows, the log). Runs on whatever Vulkan device is present (TYNDALL_DEVICE
 # picks one); on lavapipe pick small sizes (below) or it takes hours. A machine without this
@@ -18,13 +19,13 @@
 #   TRADEOFF_SIZES (1920x1080); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096);
 #   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); COST_SIZE (1920x1080),
 #   COST_MAP (2048), SPACINGS (the cost part's forests); SCENES (names, space-separated) passes
-#   through to the scripts and the bench (each has its own default).
+#   through to the parts and the bench (each has its own default); PROFILES, BASES, REFERENCE_FRAMES
+#   to the parts that take them (scripts/measure.sh --help).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/measure-common.sh
 build="${1:-build}"
-for p in tyndall-render tyndall-bench tyndall-compare; do
-  [ -x "$build/samples/$p" ] || { echo "build first: $build/samples/$p not found" >&2; exit 1; }
-done
+for p in tyndall-render tyndall-bench tyndall-compare; do program "$build" "$p" >/dev/null; done
 out="${GPU_OUT:-out/gpu}"
 frames="${FRAMES:-20}"
 mkdir -p "$out/keep"
@@ -44,7 +45,7 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered cost}; do
     epipolar)
       BENCH_OUT="$out/epipolar" FRAMES="$frames" REFERENCE_FRAMES="${REFERENCE_FRAMES:-12}" \
         SIZES="${EPIPOLAR_SIZES:-1280x720 1920x1080}" SHADOW_MAPS="${EPIPOLAR_MAPS:-2048 4096}" \
-        scripts/bench-epipolar.sh "$build" >"$out/keep/epipolar.md" 2>>"$log"
+        scripts/measure.sh epipolar "$build" >"$out/keep/epipolar.md" 2>>"$log"
       cp "$out/epipolar/rows.jsonl" "$out/keep/epipolar-rows.jsonl"
       ;;
     prefiltered)
@@ -54,13 +55,13 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered cost}; do
           printf '\n### %s, %s² map\n\n' "$size" "$map" >>"$out/keep/prefiltered.md"
           MEASURE_OUT="$out/prefiltered" SIZE="$size" SHADOW_MAP="$map" FRAMES="$frames" \
             SCENES="${SCENES:-pillars fence forest window-room}" \
-            scripts/measure-prefiltered.sh "$build" >>"$out/keep/prefiltered.md" 2>>"$log"
+            scripts/measure.sh prefiltered "$build" >>"$out/keep/prefiltered.md" 2>>"$log"
         done
       done
       ;;
     cost)
       COST_OUT="$out/cost" SIZE="${COST_SIZE:-1920x1080}" SHADOW_MAP="${COST_MAP:-2048}" FRAMES="$frames" \
-        scripts/measure-cost-independence.sh "$build" >"$out/keep/cost-independence.md" 2>>"$log"
+        scripts/measure.sh cost "$build" >"$out/keep/cost-independence.md" 2>>"$log"
       ;;
     *) echo "unknown part: $part (tradeoffs, epipolar, prefiltered, cost)" >&2; exit 1 ;;
   esac

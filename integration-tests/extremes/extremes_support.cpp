@@ -34,7 +34,7 @@ double largestRgb(const host::ImageRgba32f& image) {
   return largest;
 }
 
-// The checks every subject of a case shares: its "[ extremes ]" line (scripts/extremes-report.sh
+// The checks every subject of a case shares: its "[ extremes ]" line (scripts/measure.sh extremes
 // reads it), no NaN/Inf in L_in or T, T exact, and L_in zero where the Reference's is (`zero`).
 // Returns L_in's error against the Reference, for the subject's own bound.
 ErrorStats expectFiniteWithExactT(const samples::RenderResult& r, const samples::RenderResult& reference, bool zero,

@@ -21,7 +21,7 @@ struct KnownMiss {
 /// through one shared context per output size), and asserts for each: no NaN/Inf in L_in and T,
 /// T within 10⁻⁵ relative RMSE of the Reference's, and L_in within twice the profile's budget (High
 /// 2%, Balanced 4%, Performance 8% relative RMSE; Auto: the profile it ran) — or exactly zero
-/// where the Reference's is. Prints one "[ extremes ]" line per profile (scripts/extremes-report.sh
+/// where the Reference's is. Prints one "[ extremes ]" line per profile (scripts/measure.sh extremes
 /// reads them), then checks that validation saw nothing. A profile in `knownMisses` gets every
 /// check but the L_in bound, which is its ceiling instead; its line says "known miss", and a note
 /// says when it is within the bound now. With a directional light, the prefiltered technique with its

@@ -1,4 +1,4 @@
-// tyndall-bench: the speed–accuracy sweep behind docs/TRADEOFFS.md (scripts/tradeoffs.sh runs it).
+// tyndall-bench: the speed–accuracy sweep behind docs/TRADEOFFS.md (scripts/measure.sh tradeoffs runs it).
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -28,8 +28,8 @@ const char* const kUsage =
     "                one frame of every configuration, the Reference and the floor pass per round)\n"
     "  --orbit-frames / --orbit-degrees: the orbit for temporal stability (6 frames, 0.25 degrees each)\n"
     "  --choose-at: the size and shadow map the profiles are chosen at (default: the first of each)\n"
-    "  --out: the output directory (default out/bench): results.csv/.json/.md, pareto-*.svg/.png,\n"
-    "         choice.json, tradeoffs.md\n"
+    "  --out: the output directory (default out/bench): results.csv/.json/.md, pareto.json (the plots'\n"
+    "         data: scripts/plot-pareto.py DIR/pareto.json DIR draws pareto-*.svg/.png), choice.json, tradeoffs.md\n"
     "  --validation: Vulkan validation on; any message fails the run\n"
     "  --from: write the reports again from an earlier run's results.json, measuring nothing\n";
 
@@ -183,7 +183,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "tyndall-bench: %s\n", reportError.c_str());
       return 1;
     }
-    std::fprintf(stderr, "tyndall-bench: wrote %s/{results.csv,results.json,results.md,tradeoffs.md,choice.json}\n",
+    std::fprintf(stderr, "tyndall-bench: wrote %s/{results.csv,results.json,results.md,pareto.json,tradeoffs.md,choice.json}\n",
                  out.c_str());
   }
   if (!ok) {

@@ -12,10 +12,9 @@
 #include <nlohmann/json.hpp>
 
 #include "error_metrics.h"
-#include "plot.h"
+#include "pareto.h"
 #include "profiles.h"
 #include "render_job.h"
-#include "tyndall_host/renderer.h"
 #include "tyndall_host/scene.h"
 
 namespace tyndall::samples::bench {
@@ -548,25 +547,18 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   }
   std::vector<ClassChoice> choice;
   std::string summariesText;
+  nlohmann::ordered_json plots = nlohmann::ordered_json::array();
   for (const auto& [w, h, map] : groups) {
     const std::vector<Summary> summaries = summarize(rows, w, h, map);
     const bool chooseHere = w == context.chooseWidth && h == context.chooseHeight && map == context.chooseShadowMap;
     std::vector<ClassChoice> groupChoice = chooseByClass(w, h, map);
     std::vector<std::size_t> summaryOf;
     const std::vector<PlotPoint> points = plotPoints(summaries, markerChoice(summaries, groupChoice), summaryOf);
-    PlotSpec spec;
-    spec.title = std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) +
-                 "² shadow map: median over the scenes (" + context.device + ")";
     const std::string stem = "pareto-" + groupName(w, h, map);
-    // The plot as SVG and PNG, named `name`.svg/.png.
-    const auto writePlot = [&](const std::string& name, const std::vector<PlotPoint>& plotted, const PlotSpec& plotSpec) {
-      if (!writeFileWhole((dir / (name + ".svg")).string(), plotSvg(plotted, plotSpec), error)) return false;
-      std::vector<std::uint8_t> rgba8;
-      constexpr std::uint32_t kPngWidth = 1280, kPngHeight = 800;
-      plotRgba8(plotted, plotSpec, kPngWidth, kPngHeight, rgba8);
-      return host::writePng((dir / (name + ".png")).string(), kPngWidth, kPngHeight, rgba8, error);
-    };
-    if (!writePlot(stem, points, spec)) return false;
+    plots.push_back(plotJson(stem,
+                             std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) +
+                                 "² shadow map: median over the scenes (" + context.device + ")",
+                             points));
     summariesText += "\n### " + std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) +
                      "² shadow map\n\n![time against error](" + stem + ".svg)\n\n" +
                      summariesMarkdown(summaries, frontSummaries(points, summaryOf));
@@ -578,11 +570,11 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
         const std::vector<PlotPoint> classPoints = plotPoints(c.summaries, c.choice, classSummaryOf);
         const std::string kind = c.lights == LightClass::Directional ? "Directional-light scenes" : "Spot- and point-light scenes";
         const std::string classStem = stem + "-" + to_string(c.lights);
-        PlotSpec classSpec = spec;
-        classSpec.title = std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) + "²: " +
-                          (c.lights == LightClass::Directional ? "directional lights" : "spot and point lights") + " (" +
-                          context.device + ")";
-        if (!writePlot(classStem, classPoints, classSpec)) return false;
+        plots.push_back(plotJson(classStem,
+                                 std::to_string(w) + "×" + std::to_string(h) + ", " + std::to_string(map) + "²: " +
+                                     (c.lights == LightClass::Directional ? "directional lights" : "spot and point lights") +
+                                     " (" + context.device + ")",
+                                 classPoints));
         summariesText += "\n#### " + kind + " (the `" + to_string(c.lights) + "` rows are chosen from these)\n\n" +
                          "![time against error, " + to_string(c.lights) + "](" + classStem + ".svg)\n\n" +
                          summariesMarkdown(c.summaries, frontSummaries(classPoints, classSummaryOf));
@@ -590,13 +582,33 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
     }
     if (chooseHere && !summaries.empty()) choice = std::move(groupChoice);
   }
+  // The plots' data, drawn by scripts/plot-pareto.py (scripts/measure.sh tradeoffs runs it).
+  if (!writeFileWhole((dir / "pareto.json").string(), nlohmann::ordered_json{{"plots", plots}}.dump(2) + "\n", error)) {
+    return false;
+  }
   if (choice.empty()) {
     error = "the sweep has no measured row at the size the profiles are chosen at (" +
             groupName(context.chooseWidth, context.chooseHeight, context.chooseShadowMap) + ")";
     return false;
   }
 
-  // The choice, machine-readable (tests compare the plugin's profile table with tradeoffs.md).
+  // The configuration a profile runs as on its kind of light's scenes: the profile table's row
+  // (plugin/src/profiles.cpp, the incumbent) where this run measured it, else this run's choice (a
+  // sweep without the table's row); choice.json's asItRuns and the per-scene table below. On the run docs/TRADEOFFS.md shows the two are the
+  // same; on another device's or size's run the choice may differ, and the profiles run the table.
+  // Its medians over every scene are what the goals are stated for.
+  // The kind's summaries are its configurations measured at the choice's size.
+  const auto asItRuns = [&](const ClassChoice& byClass, Profile profile, const Summary& chosen) {
+    const auto table = context.incumbents.find(byClass.lights);
+    if (table == context.incumbents.end()) return chosen.configuration;
+    const auto row = table->second.find(profile);
+    const bool measured = row != table->second.end() &&
+                          std::any_of(byClass.summaries.begin(), byClass.summaries.end(),
+                                      [&](const Summary& s) { return s.configuration == row->second; });
+    return measured ? row->second : chosen.configuration;
+  };
+  // The choice, machine-readable: tests compare it with the plugin's profile table, and with the
+  // configuration each profile runs as (asItRuns).
   nlohmann::ordered_json choiceJson = nlohmann::ordered_json::array();
   std::string choiceTable =
       "| profile | lights | technique | parameters | scenes | speedup over the Reference | time / floor | relative RMSE | "
@@ -618,6 +630,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
       j["speedGoalMet"] = c.speedMet;
       j["floorGoalMet"] = c.floorMet;
       j["replaces"] = !c.incumbent.empty() && c.incumbent != s.configuration ? c.incumbent : std::string();
+      j["asItRuns"] = asItRuns(byClass, c.goal.profile, s);
       choiceJson.push_back(j);
       const std::string goal =
           goalsText(c.goal, {c.errorMet, c.speedMet, c.floorMet}) +
@@ -632,21 +645,6 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   }
   if (!writeFileWhole((dir / "choice.json").string(), choiceJson.dump(2) + "\n", error)) return false;
 
-  // Per scene, the row of the scene's kind of light: the profile as it runs, with the profile table's
-  // row (plugin/src/profiles.cpp, the incumbent) where this run measured it, else with this run's
-  // choice (a sweep without the table's row). On the run docs/TRADEOFFS.md shows the two are the
-  // same; on another device's or size's run the choice may differ, and the profiles run the table.
-  // Its medians over every scene are what the goals are stated for.
-  // The kind's summaries are its configurations measured at the choice's size.
-  const auto asItRuns = [&](const ClassChoice& byClass, Profile profile, const Summary& chosen) {
-    const auto table = context.incumbents.find(byClass.lights);
-    if (table == context.incumbents.end()) return chosen.configuration;
-    const auto row = table->second.find(profile);
-    const bool measured = row != table->second.end() &&
-                          std::any_of(byClass.summaries.begin(), byClass.summaries.end(),
-                                      [&](const Summary& s) { return s.configuration == row->second; });
-    return measured ? row->second : chosen.configuration;
-  };
   std::string perScene = "| profile | scene | lights | parameters | ms | speedup | × floor | relative RMSE | p99 | temporal |\n"
                          "|---|---|---|---|---|---|---|---|---|---|\n";
   std::string profileText =
@@ -698,7 +696,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
                                " with a " + std::to_string(context.chooseShadowMap) + "² shadow map";
   std::string doc;
   doc += "# Trade-offs\n\n";
-  doc += "Generated by `scripts/tradeoffs.sh`, which ran\n\n```\n" + context.commandLine + "\n```\n\n";
+  doc += "Generated by `scripts/measure.sh tradeoffs`, which ran\n\n```\n" + context.commandLine + "\n```\n\n";
   doc += "on **" + context.device + "**. Every configuration (a technique and its parameters) ran on every scene at "
          "every size after the Reference and the full-screen floor pass (one pass that reads depth and colour and "
          "writes colour, `samples/bench/shaders/floor.frag`), in the same run. Times are the median GPU time "

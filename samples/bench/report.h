@@ -1,6 +1,7 @@
 // tyndall-bench's outputs: the rows as CSV, JSON and a Markdown table; per output and shadow-map
-// size the configurations summarised over the scenes, their Pareto front plotted (SVG, PNG); and
-// the profile choice with the document docs/TRADEOFFS.md is generated from.
+// size the configurations summarised over the scenes and their Pareto front (pareto.json, which
+// scripts/plot-pareto.py draws); and the profile choice with the document docs/TRADEOFFS.md is
+// generated from.
 #pragma once
 
 #include <cstdint>
@@ -132,9 +133,11 @@ struct ReportContext {
 /// the repository root).
 bool readResults(const std::string& path, std::vector<Row>& rows, ReportContext& context, std::string& error);
 
-/// Writes into `directory`: results.csv, results.json, results.md, pareto-WxH-N.svg/.png per group,
-/// choice.json and tradeoffs.md. The choice is made per kind of light present in the rows, over that
-/// kind's scenes. Files are written whole (temporary file, rename).
+/// Writes into `directory`: results.csv, results.json, results.md, pareto.json (per group, and per
+/// kind of light when the rows have both, the plot pareto-WxH-N[-directional|-local] as data),
+/// choice.json (per profile and kind of light, the choice and the configuration it runs as) and
+/// tradeoffs.md, whose plots are pareto.json's files as .svg. The choice is made per kind of light
+/// present in the rows, over that kind's scenes. Files are written whole (temporary file, rename).
 bool writeReports(const std::vector<Row>& rows, const ReportContext& context, const std::string& directory,
                   std::string& error);
 

@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""The Markdown rows and tables scripts/measure.sh prints, from tyndall-render's --timings JSON and
+tyndall-compare's error JSON: one subcommand per kind of row (measure.sh's parts call them).
+
+  prefiltered-row TIMINGS ERROR REFERENCE SCENE VARIANT EVALUATIONS_TSV
+  epipolar-row TIMINGS ERROR REFERENCE SCENE SIZE MAP PROFILE       (a JSON line for rows.jsonl)
+  epipolar-tables ROWS_JSONL
+  reference-row TIMINGS SCENE SIZE
+  memory-cell TIMINGS                                               ("technique MiB")
+  spread EVALUATIONS_TSV [--prefix P] [--exclude-prefix P] [--title T]
+"""
+import argparse
+import json
+import statistics
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def ms(v):
+    """Three significant digits down to 0.001 ms: a GPU's passes take well under 0.1 ms."""
+    return f"{v:.1f}" if v >= 10 else f"{v:.2f}" if v >= 1 else f"{v:.3f}"
+
+
+def prefiltered_row(a):
+    t, e, r = load(a.timings), load(a.error), load(a.reference)
+    p = t["passMilliseconds"]
+    block = p.get("prefiltered_epipole_fixup_args", 0) + p.get("prefiltered_epipole_fixup", 0)
+    total = sum(v for k, v in p.items() if k.startswith("prefiltered_"))
+    ref = r["passMilliseconds"].get("reference_scattering", 0)
+    print(f"| {a.scene} | {a.variant} | {e['relativeRmse'] * 100:.2f}% | "
+          f"{ms(p.get('prefiltered_moment_shadow_map', 0))} | {ms(p.get('prefiltered_rectify', 0))} | "
+          f"{ms(p.get('prefiltered_prefix_sums', 0))} | {ms(p.get('prefiltered_evaluate', 0))} | {ms(block)} | "
+          f"{ms(total)} | {ms(ref)} | {ref / total:.1f}x |")
+    with open(a.evaluations, "a") as f:
+        f.write(f"{a.variant}\t{a.scene}\t{p.get('prefiltered_evaluate', 0)}\n")
+
+
+def epipolar_row(a):
+    t, e, r = load(a.timings), load(a.error), load(a.reference)
+    print(json.dumps({"scene": a.scene, "size": a.size, "map": int(a.map), "profile": a.profile,
+                      "device": t["device"], "passes": t["passMilliseconds"], "total": t["totalMilliseconds"],
+                      "reference": r["totalMilliseconds"], "rmse": e["relativeRmse"], "nonFinite": e["nonFinite"],
+                      "marched": t.get("marchedSamples", 0), "fixedUp": t.get("fixedUpPixelFraction", 0.0)}))
+
+
+def epipolar_tables(a):
+    with open(a.rows) as f:
+        rows = [json.loads(line) for line in f]
+
+    # The sample counts of a frame are read back when its slot comes round again: with too few
+    # frames for that (fixedUpPixelFraction < 0) they are unknown, not zero.
+    def counts(r):
+        return "n/a | n/a" if r["fixedUp"] < 0 else f"{r['marched']} | {100 * r['fixedUp']:.2f}%"
+
+    print(f"Device: {rows[0]['device']}\n")
+    print("| scene | size | shadow map | profile | Reference ms | epipolar ms | speedup | relative RMSE | NaN/Inf | "
+          "marched samples | fixed up |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        print(f"| {r['scene']} | {r['size']} | {r['map']}² | {r['profile']} | {r['reference']:.2f} | {r['total']:.2f} | "
+              f"{r['reference'] / r['total']:.1f}× | {100 * r['rmse']:.2f}% | {r['nonFinite']} | {counts(r)} |")
+    names = []
+    for r in rows:
+        for name in r["passes"]:
+            if name.startswith("epipolar_") and name not in names:
+                names.append(name)
+    print("\nPer-pass GPU milliseconds (median over the frames):\n")
+    print("| scene | size | map | profile | " + " | ".join(n.removeprefix("epipolar_") for n in names) + " |")
+    print("|---|---|---|---|" + "---|" * len(names))
+    for r in rows:
+        print(f"| {r['scene']} | {r['size']} | {r['map']} | {r['profile']} | " +
+              " | ".join(f"{r['passes'].get(n, 0.0):.3f}" for n in names) + " |")
+
+
+def reference_row(a):
+    t = load(a.timings)
+    p = t["passMilliseconds"]
+    print(f"| {a.scene} | {a.size} | 2048 | {p.get('reference_scattering', 0):.1f} | "
+          f"{p.get('composite', 0):.2f} | {t['totalMilliseconds']:.1f} | {t['wallMillisecondsPerFrame']:.1f} |")
+
+
+def memory_cell(a):
+    t = load(a.timings)
+    print(t["technique"], "%.1f" % (t["deviceMemoryBytes"] / 2**20))
+
+
+def spread(a):
+    """The prefiltered evaluation pass's spread over scenes, (max - min) / median of its time (issue 4's
+    cost independence asks < 15%), one line per variant measured on two scenes or more."""
+    rows = {}
+    with open(a.tsv) as f:
+        for line in f:
+            basis, scene, milliseconds = line.rstrip("\n").split("\t")
+            if not scene.startswith(a.prefix):
+                continue
+            if a.exclude_prefix and scene.startswith(a.exclude_prefix):
+                continue
+            rows.setdefault(basis, []).append((scene, float(milliseconds)))
+    for basis, runs in rows.items():
+        if len(runs) < 2:
+            continue
+        times = [t for _, t in runs]
+        median = statistics.median(times)
+        fraction = (max(times) - min(times)) / median if median > 0 else 0.0
+        lo = min(runs, key=lambda r: r[1])
+        hi = max(runs, key=lambda r: r[1])
+        title = f", {a.title}" if a.title else ""
+        print(f"{basis}{title}: evaluate {ms(lo[1])} ms ({lo[0]}) to {ms(hi[1])} ms ({hi[0]}) over {len(runs)} "
+              f"scenes, (max - min) / median {fraction * 100:.0f}% (issue 4 asks < 15%)")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("prefiltered-row")
+    for name in ("timings", "error", "reference", "scene", "variant", "evaluations"):
+        p.add_argument(name)
+    p.set_defaults(run=prefiltered_row)
+    p = sub.add_parser("epipolar-row")
+    for name in ("timings", "error", "reference", "scene", "size", "map", "profile"):
+        p.add_argument(name)
+    p.set_defaults(run=epipolar_row)
+    p = sub.add_parser("epipolar-tables")
+    p.add_argument("rows")
+    p.set_defaults(run=epipolar_tables)
+    p = sub.add_parser("reference-row")
+    for name in ("timings", "scene", "size"):
+        p.add_argument(name)
+    p.set_defaults(run=reference_row)
+    p = sub.add_parser("memory-cell")
+    p.add_argument("timings")
+    p.set_defaults(run=memory_cell)
+    p = sub.add_parser("spread", help=spread.__doc__)
+    p.add_argument("tsv", help="the rows the prefiltered part appends to MEASURE_OUT/evaluations-WxH.tsv")
+    p.add_argument("--prefix", default="", help="only scenes whose name starts with this")
+    p.add_argument("--exclude-prefix", help="no scene whose name starts with this")
+    p.add_argument("--title", help="the group's name in the line")
+    p.set_defaults(run=spread)
+    args = parser.parse_args()
+    args.run(args)
+
+
+if __name__ == "__main__":
+    main()

@@ -201,7 +201,11 @@ TEST(BadInputs, EachCaseRecordsNothingAndSaysWhy) {
   std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
   ASSERT_TRUE(renderer) << error;
   BreakingEffect effect;
-  ASSERT_TRUE(Context::create(samples::contextDescFor(device, settings), effect.context).ok());
+  {
+    Result<std::unique_ptr<Context>> created = Context::create(samples::contextDescFor(device, settings));
+    ASSERT_TRUE(created.ok()) << created.outcome().message;
+    effect.context = std::move(created).value();
+  }
   renderer->addPostProcess(&effect);
 
   // The unbroken frame records and changes the picture: the comparison below can fail.
@@ -240,26 +244,28 @@ TEST(BadInputs, ContextCreationErrors) {
   settings.height = 16;
   ContextDesc desc = samples::contextDescFor(validatedDevice(), settings);
   desc.backBufferFormat = VK_FORMAT_UNDEFINED;
-  std::unique_ptr<Context> context;
 
   ContextDesc noDevice = desc;
   noDevice.device = VK_NULL_HANDLE;
-  EXPECT_EQ(Context::create(noDevice, context).status, Status::InvalidArgument);
+  EXPECT_EQ(Context::create(noDevice).outcome().status, Status::InvalidArgument);
   ContextDesc zeroExtent = desc;
   zeroExtent.outputExtent = {0, 16};
-  EXPECT_EQ(Context::create(zeroExtent, context).status, Status::InvalidArgument);
+  EXPECT_EQ(Context::create(zeroExtent).outcome().status, Status::InvalidArgument);
   ContextDesc tooManyFrames = desc;
   tooManyFrames.maxFramesInFlight = 9;
-  EXPECT_EQ(Context::create(tooManyFrames, context).status, Status::InvalidArgument);
+  EXPECT_EQ(Context::create(tooManyFrames).outcome().status, Status::InvalidArgument);
   ContextDesc badFamily = desc;
   badFamily.queueFamilyIndex = 1000;
-  EXPECT_EQ(Context::create(badFamily, context).status, Status::InvalidArgument);
+  EXPECT_EQ(Context::create(badFamily).outcome().status, Status::InvalidArgument);
   ContextDesc badFormat = desc;
   badFormat.backBufferFormat = VK_FORMAT_D32_SFLOAT;
-  EXPECT_EQ(Context::create(badFormat, context).status, Status::UnsupportedFormat);
-  EXPECT_FALSE(context);
+  EXPECT_EQ(Context::create(badFormat).outcome().status, Status::UnsupportedFormat);
+  EXPECT_FALSE(Context::create(badFormat).ok());
 
-  ASSERT_TRUE(Context::create(desc, context).ok());
+  Result<std::unique_ptr<Context>> created = Context::create(desc);
+  ASSERT_TRUE(created.ok()) << created.outcome().message;
+  EXPECT_EQ(created.outcome().status, Status::Success);
+  std::unique_ptr<Context> context = std::move(created).value();
   EXPECT_EQ(context->resize({0, 0}).status, Status::InvalidArgument);
   EXPECT_EQ(context->record(VK_NULL_HANDLE, FrameDesc{}).status, Status::InvalidArgument);
   context.reset();

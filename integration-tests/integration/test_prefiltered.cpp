@@ -189,17 +189,21 @@ INSTANTIATE_TEST_SUITE_P(Placements, PrefilteredEpipole, ::testing::ValuesIn(kEp
                          [](const auto& test_param) { return std::string(test_param.param.name); });
 
 // klehm2014's projective rectification where the epipole is far off screen, chosen automatically,
-// against the non-linear one in the same view; the note says which ran.
+// against the non-linear one in the same view; the stats say which ran.
 TEST(Prefiltered, ProjectiveRectificationWhereTheEpipoleIsFarOffScreen) {
   const host::Scene scene = withEpipoleAt(loadTestScene("analytic-mixed"), {6.0, -3.0}, false, kWidth, kHeight);
   PrefilteredSettings automatic;
   const Comparison a = compare("epipole far_off_screen", scene, automatic);
-  EXPECT_NE(a.result.stats.techniqueNote.find("projective rectification (automatic"), std::string::npos)
-      << a.result.stats.techniqueNote;
+  ASSERT_TRUE(a.result.stats.prefiltered);
+  EXPECT_EQ(a.result.stats.prefiltered->rectification, Rectification::Projective) << a.result.stats.techniqueNote;
+  EXPECT_EQ(a.result.stats.prefiltered->choice, RectificationChoice::Automatic);
+  EXPECT_LE(a.result.stats.prefiltered->projectiveTexelStretch, 2.0);
   PrefilteredSettings nonLinear;
   nonLinear.rectification = PrefilteredRectification::NonLinear;
   const Comparison n = compare("epipole far_off_screen", scene, nonLinear);
-  EXPECT_NE(n.result.stats.techniqueNote.find("non-linear rectification (set)"), std::string::npos);
+  ASSERT_TRUE(n.result.stats.prefiltered);
+  EXPECT_EQ(n.result.stats.prefiltered->rectification, Rectification::NonLinear) << n.result.stats.techniqueNote;
+  EXPECT_EQ(n.result.stats.prefiltered->choice, RectificationChoice::Requested);
   std::printf("[ epipole far_off_screen ] projective %s; non-linear %s\n", describe(a.stats).c_str(),
               describe(n.stats).c_str());
   expectWithinBar("epipole far_off_screen", automatic.basis, a.stats);
@@ -210,8 +214,9 @@ TEST(Prefiltered, ProjectiveRectificationWhereTheEpipoleIsFarOffScreen) {
   PrefilteredSettings projective;
   projective.rectification = PrefilteredRectification::Projective;
   const Comparison p = compare("analytic-mixed", loadTestScene("analytic-mixed"), projective);
-  EXPECT_NE(p.result.stats.techniqueNote.find("projective rectification impossible"), std::string::npos)
-      << p.result.stats.techniqueNote;
+  ASSERT_TRUE(p.result.stats.prefiltered);
+  EXPECT_EQ(p.result.stats.prefiltered->rectification, Rectification::NonLinear) << p.result.stats.techniqueNote;
+  EXPECT_EQ(p.result.stats.prefiltered->choice, RectificationChoice::ProjectiveImpossible);
   expectWithinBar("analytic-mixed", projective.basis, p.stats);
   expectNoValidationMessages();
 }
@@ -295,9 +300,9 @@ TEST(Prefiltered, LocalLightsRunTheEpipolarTechnique) {
     o.height = 54;
     const samples::RenderResult r = renderWithSharedContext(scene, o);
     EXPECT_EQ(r.stats.technique, Technique::Epipolar);
-    EXPECT_NE(r.stats.techniqueNote.find("prefiltered supports directional lights only: epipolar instead"),
-              std::string::npos)
-        << r.stats.techniqueNote;
+    EXPECT_EQ(r.stats.requestedTechnique, Technique::Prefiltered);
+    EXPECT_EQ(r.stats.techniqueChange, TechniqueChange::PrefilteredNeedsDirectionalLight) << r.stats.techniqueNote;
+    EXPECT_FALSE(r.stats.prefiltered);
     EXPECT_TRUE(anyStartsWith(r.stats.passesRecorded, "epipolar_"));
     EXPECT_FALSE(anyStartsWith(r.stats.passesRecorded, "prefiltered_"));
   }
@@ -400,15 +405,16 @@ TEST(Prefiltered, SpacingHeuristicsMeasured) {
 }
 
 // One on/off setting for one scene and basis, defaults otherwise: both renders against the scene's
-// Reference, printed as "<what>: off X%, on Y%"; the render with it on is finite and its note names
-// `what`, the other's does not.
+// Reference, printed as "<what>: off X%, on Y%"; the render with it on is finite and its stats say
+// it ran (`ran`), the other's do not.
 struct OffOn {
   Comparison off;
   Comparison on;
 };
 
 OffOn compareOffOn(const char* name, const host::Scene& scene, PrefilteredBasis basis,
-                   const std::function<void(PrefilteredSettings&, bool)>& set, const char* what) {
+                   const std::function<void(PrefilteredSettings&, bool)>& set, const char* what,
+                   const std::function<bool(const PrefilteredStats&)>& ran) {
   PrefilteredSettings off;
   off.basis = basis;
   set(off, false);
@@ -418,14 +424,16 @@ OffOn compareOffOn(const char* name, const host::Scene& scene, PrefilteredBasis 
   std::printf("[ %s ] %s %s: off %.2f%%, on %.2f%% relative RMSE\n", name, to_string(basis), what,
               r.off.stats.relativeRmse * 100.0, r.on.stats.relativeRmse * 100.0);
   EXPECT_EQ(r.on.stats.nonFinite, 0u);
-  EXPECT_NE(r.on.result.stats.techniqueNote.find(what), std::string::npos);
-  EXPECT_EQ(r.off.result.stats.techniqueNote.find(what), std::string::npos);
+  EXPECT_TRUE(r.on.result.stats.prefiltered && ran(*r.on.result.stats.prefiltered)) << r.on.result.stats.techniqueNote;
+  EXPECT_TRUE(r.off.result.stats.prefiltered && !ran(*r.off.result.stats.prefiltered))
+      << r.off.result.stats.techniqueNote;
   return r;
 }
 
 OffOn compareOffOn(const char* name, const host::Scene& scene, PrefilteredBasis basis,
-                   bool PrefilteredSettings::*setting, const char* what) {
-  return compareOffOn(name, scene, basis, [&](PrefilteredSettings& s, bool on) { s.*setting = on; }, what);
+                   bool PrefilteredSettings::*setting, const char* what,
+                   const std::function<bool(const PrefilteredStats&)>& ran) {
+  return compareOffOn(name, scene, basis, [&](PrefilteredSettings& s, bool on) { s.*setting = on; }, what, ran);
 }
 
 // The row depth bounds (shaders/prefiltered/depth_bounds.h) give rays whose row leaves no doubt
@@ -438,7 +446,8 @@ TEST(Prefiltered, RowDepthBoundsRemoveTheLeaks) {
     for (PrefilteredBasis basis : {PrefilteredBasis::Moments4_64, PrefilteredBasis::Moments6_64,
                                    PrefilteredBasis::Fourier32}) {
       SCOPED_TRACE(std::string(name) + " " + to_string(basis));
-      const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::depthBounds, "row depth bounds");
+      const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::depthBounds, "row depth bounds",
+                                   [](const PrefilteredStats& p) { return p.rowDepthBounds; });
       EXPECT_LE(r.on.stats.relativeRmse, r.off.stats.relativeRmse * 1.001);
       // The room: its leak (several times the mean) at least halves.
       if (std::string(name) == "window-room") {
@@ -460,20 +469,19 @@ TEST(Prefiltered, SegmentedReconstructionLowersTheError) {
     for (PrefilteredBasis basis : {PrefilteredBasis::Moments4_64, PrefilteredBasis::Moments6_64}) {
       SCOPED_TRACE(std::string(name) + " " + to_string(basis));
       const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::segmentedReconstruction,
-                                   "segmented reconstruction");
+                                   "segmented reconstruction", [](const PrefilteredStats& p) { return p.segments > 0; });
       if (std::string(name) == "forest") {
         EXPECT_LE(r.on.stats.relativeRmse, r.off.stats.relativeRmse);
       } else {
         EXPECT_LT(r.on.stats.relativeRmse, 0.5 * r.off.stats.relativeRmse);
       }
-      EXPECT_NE(r.on.result.stats.techniqueNote.find("segmented reconstruction (4 segments)"), std::string::npos);
+      EXPECT_EQ(r.on.result.stats.prefiltered.value().segments, 4u);
     }
   }
   PrefilteredSettings single;
   single.rayWeightTaps = 1;
   const Comparison one = compare("pillars", loadTestScene("pillars"), single);
-  EXPECT_EQ(one.result.stats.techniqueNote.find("segmented reconstruction"), std::string::npos)
-      << "one lookup is one segment";
+  EXPECT_EQ(one.result.stats.prefiltered.value().segments, 0u) << "one lookup is one segment";
   expectNoValidationMessages();
 }
 
@@ -488,7 +496,8 @@ TEST(Prefiltered, TrimmedSegmentsLowerTheError) {
     const host::Scene scene = loadTestScene(name);
     for (PrefilteredBasis basis : {PrefilteredBasis::Moments4_64, PrefilteredBasis::Moments6_64}) {
       SCOPED_TRACE(std::string(name) + " " + to_string(basis));
-      const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::trimmedSegments, "trimmed segments");
+      const OffOn r = compareOffOn(name, scene, basis, &PrefilteredSettings::trimmedSegments, "trimmed segments",
+                                   [](const PrefilteredStats& p) { return p.trimmedSegments; });
       EXPECT_LE(r.on.stats.relativeRmse, r.off.stats.relativeRmse * 1.001);
       if (std::string(name) == "window-room") {
         EXPECT_LT(r.on.stats.relativeRmse, 0.5 * r.off.stats.relativeRmse);
@@ -498,8 +507,7 @@ TEST(Prefiltered, TrimmedSegmentsLowerTheError) {
   PrefilteredSettings unsegmented;
   unsegmented.segmentedReconstruction = false;
   const Comparison c = compare("pillars", loadTestScene("pillars"), unsegmented);
-  EXPECT_EQ(c.result.stats.techniqueNote.find("trimmed segments"), std::string::npos)
-      << "only segments are trimmed";
+  EXPECT_FALSE(c.result.stats.prefiltered.value().trimmedSegments) << "only segments are trimmed";
   expectNoValidationMessages();
 }
 
@@ -511,13 +519,15 @@ TEST(Prefiltered, TrimmedSegmentsLowerTheError) {
 // trimmed segments, whose middle it walks).
 TEST(Prefiltered, TexelWalkResolvesTheMiddleOfTrimmedSegments) {
   const PrefilteredSettings defaults;
-  ASSERT_EQ(defaults.texelWalkSteps, 8u) << "the note checked below names the default";
+  ASSERT_GT(defaults.texelWalkSteps, 0u) << "the walk is on by default";
   auto walk = [&](PrefilteredSettings& s, bool on) { s.texelWalkSteps = on ? defaults.texelWalkSteps : 0u; };
   for (const char* name : {"window-room", "pillars", "forest"}) {
     const host::Scene scene = loadTestScene(name);
     for (PrefilteredBasis basis : {PrefilteredBasis::Moments4_64, PrefilteredBasis::Moments6_64}) {
       SCOPED_TRACE(std::string(name) + " " + to_string(basis));
-      const OffOn r = compareOffOn(name, scene, basis, walk, "texel walk of 8 steps");
+      const OffOn r = compareOffOn(name, scene, basis, walk, "texel walk", [&](const PrefilteredStats& p) {
+        return p.texelWalkSteps == defaults.texelWalkSteps;
+      });
       EXPECT_LE(r.on.stats.relativeRmse, r.off.stats.relativeRmse * 1.001);
       if (std::string(name) == "window-room") {
         EXPECT_LT(r.on.stats.relativeRmse, r.off.stats.relativeRmse / 3.0);
@@ -527,7 +537,7 @@ TEST(Prefiltered, TexelWalkResolvesTheMiddleOfTrimmedSegments) {
   PrefilteredSettings untrimmed;
   untrimmed.trimmedSegments = false;
   const Comparison c = compare("pillars", loadTestScene("pillars"), untrimmed);
-  EXPECT_EQ(c.result.stats.techniqueNote.find("texel walk"), std::string::npos) << "only trimmed segments are walked";
+  EXPECT_EQ(c.result.stats.prefiltered.value().texelWalkSteps, 0u) << "only trimmed segments are walked";
   expectNoValidationMessages();
 }
 
@@ -562,8 +572,7 @@ TEST(Prefiltered, ShortRaysHoldTheErrorAtEveryOutputSize) {
     const samples::RenderResult r = render(Technique::Prefiltered, width, height, settings);
     const ErrorStats stats = compareRgb(r.scattering, ref.scattering);
     EXPECT_EQ(stats.nonFinite, 0u);
-    EXPECT_EQ(r.stats.techniqueNote.find("rays within 16 columns ray-marched") != std::string::npos,
-              settings.shortRayColumns == 16)
+    EXPECT_TRUE(r.stats.prefiltered && r.stats.prefiltered->shortRayColumns == settings.shortRayColumns)
         << r.stats.techniqueNote;
     return stats.relativeRmse;
   };
@@ -624,7 +633,11 @@ TEST(Prefiltered, EachBadSettingRecordsNothingAndNamesTheField) {
   std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
   ASSERT_TRUE(renderer) << error;
   SettingsEffect effect;
-  ASSERT_TRUE(Context::create(samples::contextDescFor(device, settings), effect.context).ok());
+  {
+    Result<std::unique_ptr<Context>> created = Context::create(samples::contextDescFor(device, settings));
+    ASSERT_TRUE(created.ok()) << created.outcome().message;
+    effect.context = std::move(created).value();
+  }
   PrefilteredSettings small;
   small.rows = small.columns = 64;
   effect.perFrame = {small};
@@ -690,7 +703,11 @@ TEST(Prefiltered, SettingsChangeBetweenFramesInFlight) {
   std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
   ASSERT_TRUE(renderer) << error;
   SettingsEffect effect;
-  ASSERT_TRUE(Context::create(samples::contextDescFor(device, settings), effect.context).ok());
+  {
+    Result<std::unique_ptr<Context>> created = Context::create(samples::contextDescFor(device, settings));
+    ASSERT_TRUE(created.ok()) << created.outcome().message;
+    effect.context = std::move(created).value();
+  }
   PrefilteredSettings a, b, c;
   a.rows = 64;
   a.columns = 128;

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <string>
 #include <new>
+#include <optional>
 
 #include "auto_profile.h"
 #include "composite/composite_pass.h"
@@ -16,6 +17,7 @@
 #include "prefiltered/prefiltered_technique.h"
 #include "profiles.h"
 #include "reference/reference_pass.h"
+#include "technique_selection.h"
 #include "timing.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -114,29 +116,38 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   return k;
 }
 
-// What the epipolar technique's march does this frame, for the stats.
-std::string epipolarMarchNote(const gpu::EpipolarConstants& k, const EpipolarSettings& settings) {
-  if (k.tree.x == 0) {
-    return "; point light: samples marched with the texel walk across blocks of " +
-           std::to_string(gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK) + "^2 texels (no single slice line)";
+// The epipolar part of the note: how it marched, and where the slices went (slice_arc.h).
+std::string epipolarNote(const EpipolarStats& s) {
+  std::string note;
+  switch (s.march) {
+    case EpipolarMarch::MinMaxTree: break;
+    case EpipolarMarch::CellsTreeOff: note = "; min/max tree off"; break;
+    case EpipolarMarch::CellsMapTooLarge: note = "; shadow map above 4096^2: march without the min/max tree"; break;
+    case EpipolarMarch::PointLightBlockWalk:
+      note = "; point light: samples marched with the texel walk across blocks of " +
+             std::to_string(gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK) + "^2 texels (no single slice line)";
+      break;
   }
-  if (k.tree.z != 0) return "";
-  return settings.minMaxTree ? "; shadow map above 4096^2: march without the min/max tree" : "; min/max tree off";
+  if (s.sliceBorderFraction >= 1.0f) return note;
+  char line[120];
+  std::snprintf(line, sizeof(line), "; slices over %.1f%% of the border (%s%s%s)", 100.0 * s.sliceBorderFraction,
+                s.slicesFitSpotCone ? "spot cone" : "", s.slicesFitSpotCone && s.slicesFitOffScreenEpipole ? ", " : "",
+                s.slicesFitOffScreenEpipole ? "epipole off screen" : "");
+  return note + line;
 }
 
-// Where the slices went this frame, for the stats (slice_arc.h): nothing when on the whole border.
-std::string sliceArcNote(const SliceArc& arc) {
-  if (arc.fraction >= 1.0f) return "";
-  char line[120];
-  std::snprintf(line, sizeof(line), "; slices over %.1f%% of the border (%s%s%s)", 100.0 * arc.fraction,
-                arc.cone ? "spot cone" : "", arc.cone && arc.screen ? ", " : "", arc.screen ? "epipole off screen" : "");
-  return line;
+// How the epipolar technique marches this frame, for the stats.
+EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings) {
+  if (k.tree.x == 0) return EpipolarMarch::PointLightBlockWalk;
+  if (k.tree.z != 0) return EpipolarMarch::MinMaxTree;
+  return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
 }
 
 }  // namespace
 
 struct Context::Impl {
   ContextDesc desc;
+  ContextTuning tuning;
   Gpu gpu;
   VkExtent2D extent{};
   VkSampler nearest = VK_NULL_HANDLE;
@@ -198,14 +209,14 @@ Outcome Context::Impl::createSizeIndependent() {
   if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
   stats.timestampsSupported = timer.supported();
   if (Outcome o = reference.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
-  const std::uint32_t marchParts = desc.marchThreadsPerSample != 0 ? desc.marchThreadsPerSample
+  const std::uint32_t marchParts = tuning.marchThreadsPerSample != 0 ? tuning.marchThreadsPerSample
                                    : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
                                        ? 1u
                                        : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
   if (Outcome o = epipolar.create(gpu, nearest, linear, desc.maxFramesInFlight, marchParts); !o) return o;
   if (Outcome o = prefiltered.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
-  if (desc.pipelineCreation == PipelineCreation::AtCreate) {
+  if (tuning.pipelineCreation == PipelineCreation::AtCreate) {
     if (Outcome o = warmUp(); !o) return o;
   }
   if (desc.backBufferFormat != VK_FORMAT_UNDEFINED) {
@@ -271,21 +282,21 @@ void Context::Impl::destroyAll() {
   nearest = VK_NULL_HANDLE;
 }
 
-Outcome Context::create(const ContextDesc& desc, std::unique_ptr<Context>& out) {
+Result<std::unique_ptr<Context>> Context::create(const ContextDesc& desc) {
   try {
-    return createContext(desc, out);
+    return createContext(desc);
   } catch (const std::bad_alloc&) {
-    out.reset();
     Outcome outcome = vkFailed("create", VK_ERROR_OUT_OF_HOST_MEMORY);
     outcome.message = "create: out of host memory";
     return outcome;
   }
 }
 
-Outcome Context::createContext(const ContextDesc& desc, std::unique_ptr<Context>& out) {
-  out.reset();
+Result<std::unique_ptr<Context>> Context::createContext(const ContextDesc& desc) {
   auto impl = std::make_unique<Impl>();
   impl->desc = desc;
+  if (desc.tuning != nullptr) impl->tuning = *desc.tuning;
+  impl->desc.tuning = nullptr;  // not kept: the host's struct may not outlive this call
   auto fail = [&](Status status, const std::string& message) {
     return impl->fail(failure(status, message));
   };
@@ -298,7 +309,7 @@ Outcome Context::createContext(const ContextDesc& desc, std::unique_ptr<Context>
   if (desc.maxFramesInFlight < 1 || desc.maxFramesInFlight > 8) {
     return fail(Status::InvalidArgument, "maxFramesInFlight must be in 1..8");
   }
-  if (const std::uint32_t t = desc.marchThreadsPerSample; t > 64 || (t & (t - 1)) != 0) {
+  if (const std::uint32_t t = impl->tuning.marchThreadsPerSample; t > 64 || (t & (t - 1)) != 0) {
     return fail(Status::InvalidArgument, "marchThreadsPerSample must be 0 (by device) or a power of two up to 64");
   }
   if (desc.outputExtent.width == 0 || desc.outputExtent.height == 0) {
@@ -335,8 +346,7 @@ Outcome Context::createContext(const ContextDesc& desc, std::unique_ptr<Context>
     impl->destroyAll();
     return impl->fail(outcome);
   }
-  out.reset(new Context(std::move(impl)));
-  return {};
+  return std::unique_ptr<Context>(new Context(std::move(impl)));
 }
 
 Context::Context(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -387,7 +397,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
                               ? autoProfile.choose(stats.frameIndex, frame.autoBudgetMilliseconds)
                               : frame.profile;
   const ProfileChoice& choice = profileChoice(profile, lightClassOf(frame.light.type));
-  Technique technique = frame.technique != Technique::None ? frame.technique : choice.technique;
+  const Technique requested = frame.technique != Technique::None ? frame.technique : choice.technique;
+  const TechniqueSelection selection =
+      selectTechnique({requested, frame.light.type, !frame.lightColor.empty(), extent, setup.scatters});
+  const Technique technique = selection.technique;
   std::string note = frame.technique != Technique::None ? std::string("technique set by the frame: ") +
                                                               to_string(frame.technique)
                                                         : std::string(choice.note);
@@ -403,38 +416,24 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     note = line + note;
   }
+  if (selection.change == TechniqueChange::NothingScatters) {
+    note = techniqueChangeNote(selection.change);
+  } else if (selection.change != TechniqueChange::None) {
+    note += std::string("; ") + techniqueChangeNote(selection.change);
+  }
   const EpipolarSettings& epipolarSettings = frame.epipolar != nullptr ? *frame.epipolar : choice.epipolar;
-  if (technique == Technique::Prefiltered && frame.light.type != LightType::Directional) {
-    // Rectified shadow maps are built for directional lights only (a design fallback, DESIGN.md
-    // "Model only what the scene requires"; docs/PREFILTERED.md).
-    technique = Technique::Epipolar;
-    note += "; prefiltered supports directional lights only: epipolar instead";
-  } else if (technique == Technique::Prefiltered && !frame.lightColor.empty()) {
-    // A light-colour texture varies along the light rays a rectified texel averages over (a
-    // design fallback, like the one above).
-    technique = Technique::Epipolar;
-    note += "; prefiltered has no light-colour texture: epipolar instead";
-  }
-  if (technique == Technique::Epipolar && (extent.width < 2 || extent.height < 2)) {
-    // Epipolar lines need a screen at least two pixels wide and high (a design fallback).
-    technique = Technique::Reference;
-    note += "; output smaller than 2x2: Reference instead of epipolar";
-  }
-  if (gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && frame.light.type == LightType::Point &&
-      technique != Technique::Prefiltered && !frame.shadowMaps.empty() &&
-      frame.shadowMaps[0].depth.extent.width > kCpuDriverPointLightMapLimit) {
-    // lavapipe ends every loop of a shader invocation once its loops together have run 65,535
-    // iterations (docs/REFERENCE.md "Loop budget on lavapipe"). A point light's texel walk takes about two
-    // per texel step and a ray passing the light crosses up to six times the map's side: within
-    // the budget up to 4096² (measured), not beyond. Said, not hidden: the result is wrong there.
+  // lavapipe ends every loop of a shader invocation once its loops together have run 65,535
+  // iterations (docs/REFERENCE.md "Loop budget on lavapipe"). A point light's texel walk takes about
+  // two per texel step and a ray passing the light crosses up to six times the map's side: within
+  // the budget up to 4096², not beyond. Said, not hidden: the result is wrong there.
+  const bool overLoopLimit = gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+                             frame.light.type == LightType::Point &&
+                             (technique == Technique::Reference || technique == Technique::Epipolar) &&
+                             !frame.shadowMaps.empty() &&
+                             frame.shadowMaps[0].depth.extent.width > kCpuDriverPointLightMapLimit;
+  if (overLoopLimit) {
     note += "; CPU driver: a point light's texel walk with maps above " + std::to_string(kCpuDriverPointLightMapLimit) +
             "^2 can exceed lavapipe's 65,535 loop iterations per invocation and come out too dark";
-  }
-  if (!setup.scatters) {
-    // Nothing scatters (σ_s = 0, the light off, or a vacuum): no technique runs, L_in is cleared
-    // and the composite attenuates the back buffer (DESIGN.md "Model only what the scene requires").
-    technique = Technique::None;
-    note = "no in-scattering (sigma_s = 0 or the light is off): L_in cleared to 0, the back buffer attenuated";
   }
   if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);
   const bool drawsDebugView = frame.debugView != DebugView::None && technique == Technique::Epipolar;
@@ -449,10 +448,13 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   }
   gpu::EpipolarConstants epipolarK{};
   bool buildScatteringTable = false;
+  std::optional<EpipolarStats> epipolarStats;
   if (technique == Technique::Epipolar) {
     SliceArc arc;
     epipolarK = epipolarConstants(frame, epipolarSettings, extent, arc);
-    note += epipolarMarchNote(epipolarK, epipolarSettings) + sliceArcNote(arc);
+    epipolarStats = EpipolarStats{epipolarSettings.slices, epipolarSettings.samplesPerSlice,
+                                  epipolarMarch(epipolarK, epipolarSettings), arc.fraction, arc.cone, arc.screen};
+    note += epipolarNote(*epipolarStats);
     const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
     // The light-colour texture's sums along the slices' lines, for the march along them.
     const std::uint32_t colorSamples = epipolarK.tree.w != 0 ? epipolarK.tree.x : 0;
@@ -474,10 +476,12 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     if (Outcome o = epipolar.prepareScatteringTable(gpu, frame, buildScatteringTable); !o) return fail(o);
   }
 
+  std::optional<PrefilteredStats> prefilteredStats;
   if (technique == Technique::Prefiltered) {
     const PrefilteredSettings& settings = frame.prefiltered != nullptr ? *frame.prefiltered : choice.prefiltered;
+    prefilteredStats.emplace();
     if (Outcome o = prefiltered.prepare(gpu, frame, settings, extent, slot, stats.frameIndex,
-                                        desc.maxFramesInFlight, note);
+                                        desc.maxFramesInFlight, *prefilteredStats, note);
         !o) {
       return fail(o);
     }
@@ -485,18 +489,29 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 
   stats.requestedProfile = frame.profile;
   stats.profileUsed = profile;
+  stats.requestedTechnique = requested;
+  stats.techniqueSetByFrame = frame.technique != Technique::None;
+  stats.techniqueChange = selection.change;
+  stats.epipolar = epipolarStats;
+  stats.prefiltered = prefilteredStats;
+  stats.pointLightWalkOverCpuLoopLimit = overLoopLimit;
+  stats.debugViewDrawn = drawsDebugView;
   stats.passesRecorded.clear();
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
   if (EpipolarTechnique::Counts counts; epipolar.takeCounts(slot, counts)) {
-    stats.fixedUpPixelFraction = static_cast<double>(counts.fixedUp) / (double(extent.width) * extent.height);
-    stats.marchedSamples = counts.marched;
-    stats.shadowedSamples = counts.shadowed;
+    stats.epipolarCounts = EpipolarCounts{
+        counts.marched, counts.shadowed,
+        static_cast<double>(counts.fixedUp) / (double(extent.width) * extent.height)};
   }
 
   if (!setup.attenuates) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
     stats.technique = Technique::None;
-    stats.techniqueNote = "medium has no extinction: the back buffer is left as it is";
+    stats.techniqueChange = TechniqueChange::NoExtinction;
+    stats.epipolar.reset();
+    stats.prefiltered.reset();
+    stats.debugViewDrawn = false;
+    stats.techniqueNote = techniqueChangeNote(TechniqueChange::NoExtinction);
     recordAovs(cmd, slot, frame, false);
   } else {
     stats.technique = technique;  // None when nothing scatters
@@ -518,9 +533,11 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
       lastTimedFrame = latest->frameIndex;
     }
   }
-  for (std::size_t i = 0; i < AutoProfile::kLadder.size(); ++i) {
-    stats.autoEstimateMilliseconds[i] = autoProfile.estimateMs(AutoProfile::kLadder[i]);
-  }
+  auto estimate = [&](Profile p) -> std::optional<double> {
+    const double ms = autoProfile.estimateMs(p);
+    return ms >= 0.0 ? std::optional<double>(ms) : std::nullopt;
+  };
+  stats.autoEstimateMilliseconds = {estimate(Profile::High), estimate(Profile::Balanced), estimate(Profile::Performance)};
   stats.deviceMemoryBytes = gpu.allocatedBytes;
   ++stats.frameIndex;
   return {};

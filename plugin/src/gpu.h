@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tyndall/tyndall.h"
+#include "tyndall/tuning.h"
 #include "vk_dispatch.h"
 
 namespace tyndall {

@@ -4,7 +4,7 @@
 // equal.
 #pragma once
 
-#include "tyndall/tyndall.h"
+#include "tyndall/tuning.h"
 
 namespace tyndall {
 

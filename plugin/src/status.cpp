@@ -34,4 +34,16 @@ const char* to_string(Technique technique) noexcept {
   return "unknown";
 }
 
+const char* to_string(TechniqueChange change) noexcept {
+  switch (change) {
+    case TechniqueChange::None: return "none";
+    case TechniqueChange::NoExtinction: return "no-extinction";
+    case TechniqueChange::NothingScatters: return "nothing-scatters";
+    case TechniqueChange::PrefilteredNeedsDirectionalLight: return "prefiltered-needs-directional-light";
+    case TechniqueChange::PrefilteredHasNoLightColor: return "prefiltered-has-no-light-color";
+    case TechniqueChange::EpipolarNeeds2x2: return "epipolar-needs-2x2";
+  }
+  return "unknown";
+}
+
 }  // namespace tyndall

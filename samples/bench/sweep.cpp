@@ -437,8 +437,10 @@ class Sweep {
     row.timeRatioToReference = referenceMs > 0.0 ? row.totalMilliseconds / referenceMs : 0.0;
     row.timeRatioToFloor = floorMs > 0.0 ? row.totalMilliseconds / floorMs : 0.0;
     row.deviceMemoryBytes = run.stats.deviceMemoryBytes;
-    row.marchedSamples = run.stats.marchedSamples;
-    row.fixedUpPixelFraction = std::max(run.stats.fixedUpPixelFraction, 0.0);
+    if (run.stats.epipolarCounts) {
+      row.marchedSamples = run.stats.epipolarCounts->marchedSamples;
+      row.fixedUpPixelFraction = run.stats.epipolarCounts->fixedUpPixelFraction;
+    }
   }
 
   bool checkValidation(std::string& error) const {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tyndall/tyndall.h"
+#include "tyndall/tuning.h"
 
 namespace tyndall::host {
 enum class LightType;  // tyndall_host/scene.h

@@ -169,8 +169,9 @@ int main() {
   desc.messageCallback = [](tyndall::Severity, const char* message, void*) {
     std::fprintf(stderr, "tyndall: %s\n", message);
   };
-  std::unique_ptr<tyndall::Context> context;
-  if (tyndall::Outcome o = tyndall::Context::create(desc, context); !o) return 1;
+  tyndall::Result<std::unique_ptr<tyndall::Context>> created = tyndall::Context::create(desc);
+  if (!created) return 1;
+  std::unique_ptr<tyndall::Context> context = std::move(created).value();
 
   // --- One frame. ------------------------------------------------------------------------------
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};

@@ -293,6 +293,8 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["profile"] = to_string(options.profile);
   json["profileUsed"] = to_string(result.stats.profileUsed);
   json["technique"] = to_string(result.stats.technique);
+  json["requestedTechnique"] = to_string(result.stats.requestedTechnique);
+  json["techniqueChange"] = to_string(result.stats.techniqueChange);
   json["techniqueNote"] = result.stats.techniqueNote;
   json["width"] = options.width;
   json["height"] = options.height;
@@ -306,10 +308,11 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
     if (perPass.contains(name)) passes[name] = median(perPass[name]);
   }
   json["passMilliseconds"] = passes;
-  if (result.stats.technique == Technique::Epipolar) {
-    json["marchedSamples"] = result.stats.marchedSamples;
-    json["shadowedSamples"] = result.stats.shadowedSamples;
-    json["fixedUpPixelFraction"] = result.stats.fixedUpPixelFraction;
+  if (const std::optional<EpipolarCounts>& counts = result.stats.epipolarCounts;
+      result.stats.technique == Technique::Epipolar && counts) {
+    json["marchedSamples"] = counts->marchedSamples;
+    json["shadowedSamples"] = counts->shadowedSamples;
+    json["fixedUpPixelFraction"] = counts->fixedUpPixelFraction;
   }
   json["totalMilliseconds"] = median(totals);
   json["deviceMemoryBytes"] = result.stats.deviceMemoryBytes;

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "tyndall/tyndall.h"
+#include "tyndall/tuning.h"
 
 namespace tyndall::samples {
 

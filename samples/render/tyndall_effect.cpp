@@ -93,14 +93,16 @@ std::unique_ptr<TyndallEffect> TyndallEffect::create(host::Device& device, const
   auto effect = std::unique_ptr<TyndallEffect>(new TyndallEffect());
   effect->profile_ = profile;
   ContextDesc desc = contextDescFor(device, settings);
-  desc.pipelineCreation = pipelineCreation;
-  desc.marchThreadsPerSample = marchThreadsPerSample;
+  const ContextTuning tuning{pipelineCreation, marchThreadsPerSample};
+  desc.tuning = &tuning;
   desc.messageCallback = &TyndallEffect::onMessage;
   desc.messageUserData = effect.get();
-  if (Outcome outcome = Context::create(desc, effect->context_); !outcome) {
-    error = "tyndall: " + outcome.message;
+  Result<std::unique_ptr<Context>> context = Context::create(desc);
+  if (!context) {
+    error = "tyndall: " + context.outcome().message;
     return nullptr;
   }
+  effect->context_ = std::move(context).value();
   return effect;
 }
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tyndall/tyndall.h"
+#include "tyndall/tuning.h"
 #include "tyndall_host/renderer.h"
 
 namespace tyndall::samples {

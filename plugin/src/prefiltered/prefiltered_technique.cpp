@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 
 #include <glm/gtc/type_ptr.hpp>
 
@@ -307,7 +308,8 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, const MapKey& key, std:
 
 Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
                                       VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
-                                      std::uint32_t framesInFlight, std::string& note) {
+                                      std::uint32_t framesInFlight, PrefilteredStats& decisions,
+                                      std::string& note) {
   retired_.release(frameIndex, framesInFlight, [&](Maps& maps) { destroyMaps(gpu, maps); });
 
   const std::uint32_t basis = static_cast<std::uint32_t>(settings.basis);
@@ -338,8 +340,12 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   bool projective = false;
   std::string rectNote;
   const std::string stretch = proj.constructible ? printed("%.2f", proj.texelStretch) : std::string("inf");
+  decisions.projectiveTexelStretch =
+      proj.constructible ? proj.texelStretch : std::numeric_limits<double>::infinity();
+  decisions.choice = RectificationChoice::Requested;
   switch (settings.rectification) {
     case PrefilteredRectification::Automatic:
+      decisions.choice = RectificationChoice::Automatic;
       projective = prefiltered::useProjectiveRectification(proj);
       rectNote = projective ? "projective rectification (automatic: texel stretch " + stretch + " <= 2)"
                             : proj.constructible
@@ -351,6 +357,7 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
       break;
     case PrefilteredRectification::Projective:
       projective = proj.constructible;
+      if (!projective) decisions.choice = RectificationChoice::ProjectiveImpossible;
       rectNote = projective ? "projective rectification (set; texel stretch " + stretch + ")"
                             : "projective rectification impossible (the light axis is in the frustum): non-linear instead";
       break;
@@ -422,6 +429,14 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
     return o;
   }
   std::memcpy(constants_[slot].mapped, &k, sizeof(k));
+  decisions.rectification = projective ? Rectification::Projective : Rectification::NonLinear;
+  decisions.prefixSumSets = sets;
+  decisions.rowDepthBounds = settings.depthBounds;
+  decisions.segments = segmented ? settings.rayWeightTaps : 0u;
+  decisions.trimmedSegments = trimmed;
+  decisions.texelWalkSteps = walk;
+  decisions.shortRayColumns = settings.shortRayColumns;
+  decisions.epipoleBlockMarched = blockOnScreen;
   plan_.basis = basis;
   plan_.sets = sets;
   plan_.filtered = settings.filteredResampling;

@@ -41,10 +41,11 @@ class PrefilteredTechnique {
   /// The frame's CPU set-up: rectification bounds and the projective/non-linear choice, the
   /// extinction of the prefix weights, the epipole block; writes the slot's constants and makes
   /// the maps match the settings (maps of other sizes are kept until no frame in flight can use
-  /// them). `note` receives what was chosen, for the stats. The light must be directional, and
+  /// them). `decisions` and `note` receive what was chosen, for the stats. The light must be directional, and
   /// something must scatter (a frame without in-scattering runs no technique).
   Outcome prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings, VkExtent2D extent,
-                  std::uint32_t slot, std::uint64_t frameIndex, std::uint32_t framesInFlight, std::string& note);
+                  std::uint32_t slot, std::uint64_t frameIndex, std::uint32_t framesInFlight,
+                  PrefilteredStats& decisions, std::string& note);
 
   /// Records the passes prepare() chose; each is timed and appended to `passes`. The host inputs
   /// must already be readable by compute shaders and the targets writable (GENERAL).

@@ -1,0 +1,38 @@
+#include "technique_selection.h"
+
+namespace tyndall {
+
+TechniqueSelection selectTechnique(const TechniqueRequest& request) {
+  // Nothing scatters: no technique runs, L_in is cleared and the composite attenuates the back
+  // buffer (DESIGN.md "Model only what the scene requires").
+  if (!request.scatters) return {Technique::None, TechniqueChange::NothingScatters};
+  TechniqueSelection s{request.requested, TechniqueChange::None};
+  // Rectified shadow maps are built for directional lights only, and a light-colour texture
+  // varies along the light rays a rectified texel averages over.
+  if (s.technique == Technique::Prefiltered && request.light != LightType::Directional) {
+    s = {Technique::Epipolar, TechniqueChange::PrefilteredNeedsDirectionalLight};
+  } else if (s.technique == Technique::Prefiltered && request.hasLightColor) {
+    s = {Technique::Epipolar, TechniqueChange::PrefilteredHasNoLightColor};
+  }
+  // Epipolar lines need a screen at least two pixels wide and high.
+  if (s.technique == Technique::Epipolar && (request.extent.width < 2 || request.extent.height < 2)) {
+    s = {Technique::Reference, TechniqueChange::EpipolarNeeds2x2};
+  }
+  return s;
+}
+
+const char* techniqueChangeNote(TechniqueChange change) {
+  switch (change) {
+    case TechniqueChange::None: return "";
+    case TechniqueChange::NoExtinction: return "medium has no extinction: the back buffer is left as it is";
+    case TechniqueChange::NothingScatters:
+      return "no in-scattering (sigma_s = 0 or the light is off): L_in cleared to 0, the back buffer attenuated";
+    case TechniqueChange::PrefilteredNeedsDirectionalLight:
+      return "prefiltered supports directional lights only: epipolar instead";
+    case TechniqueChange::PrefilteredHasNoLightColor: return "prefiltered has no light-colour texture: epipolar instead";
+    case TechniqueChange::EpipolarNeeds2x2: return "output smaller than 2x2: Reference instead of epipolar";
+  }
+  return "";
+}
+
+}  // namespace tyndall

@@ -1,0 +1,27 @@
+// Which technique runs a frame: the profile's (or the frame's) request, changed only by the
+// design fallbacks that Stats::techniqueChange names. Pure, so that every rule is unit-tested.
+#pragma once
+
+#include "tyndall/tyndall.h"
+
+namespace tyndall {
+
+struct TechniqueRequest {
+  Technique requested = Technique::None;  ///< the frame's override, else the profile row's
+  LightType light = LightType::Directional;
+  bool hasLightColor = false;
+  VkExtent2D extent{};
+  bool scatters = true;  ///< σ_s > 0 and the light on (FrameSetup::scatters)
+};
+
+struct TechniqueSelection {
+  Technique technique = Technique::None;
+  TechniqueChange change = TechniqueChange::None;
+};
+
+TechniqueSelection selectTechnique(const TechniqueRequest& request);
+
+/// The note's words for a change ("" for None).
+const char* techniqueChangeNote(TechniqueChange change);
+
+}  // namespace tyndall

@@ -4,11 +4,11 @@
 #                docs/TRADEOFFS-H200.md comes from its results.json, written again here (with the
 #                plots, which need matplotlib) by FROM=$GPU_OUT/keep/tradeoffs-results.json
 #                DOC=docs/TRADEOFFS-H200.md scripts/measure.sh tradeoffs
-#   epipolar     scripts/measure.sh epipolar with 20 frames (12 for the Reference): EPIPOLAR.md "On a GPU"
+#   epipolar     scripts/measure.sh epipolar with 20 frames (12 for the Reference): docs/measurements/epipolar-<device>-<date>.md
 #   prefiltered  scripts/measure.sh prefiltered at 1280x720 and 1920x1080 with 1024² and 2048² maps,
-#                every storage variant, 20 frames: PREFILTERED.md "Cost on a GPU"
+#                every storage variant, 20 frames: docs/measurements/prefiltered-<device>-<date>.md
 #   cost         scripts/measure.sh cost at 1920x1080 with a 2048² map, 20 frames: the GPU's
-#                figures for PREFILTERED.md "Cost independence" (measured on lavapipe so far)
+#                figures for docs/measurements/prefiltered-cost-independence-<device>-<date>.md
 # The small files to keep are gathered in $GPU_OUT/keep/ (at most 8: results.json, the Markdown
 # tables, the epipolar rows, the log). Runs on whatever Vulkan device is present (TYNDALL_DEVICE
 # picks one); on lavapipe pick small sizes (below) or it takes hours. A machine without this

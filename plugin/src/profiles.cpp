@@ -6,7 +6,7 @@ namespace tyndall {
 
 namespace {
 
-// The rows are docs/TRADEOFFS.md's choice (scripts/tradeoffs.sh: tyndall-bench's sweep of slices,
+// The rows are docs/TRADEOFFS.md's choice (scripts/measure.sh tradeoffs: tyndall-bench's sweep of slices,
 // samples, intensity refinement and the fix-up's steps against the Reference at 640×360 with 2048²
 // maps), which TradeoffsDocument.AgreesWithTheProfileTable keeps equal to this table: per profile and
 // kind of light, over that kind's scenes, among the

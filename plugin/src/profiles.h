@@ -1,6 +1,6 @@
 // The profile table: which technique and parameters each quality profile uses, per kind of light.
 // Data, not code paths (FidelityFX's quality-mode tables); docs/TRADEOFFS.md justifies each row by
-// measurement (scripts/tradeoffs.sh) and TradeoffsDocument.AgreesWithTheProfileTable keeps the two
+// measurement (scripts/measure.sh tradeoffs) and TradeoffsDocument.AgreesWithTheProfileTable keeps the two
 // equal.
 #pragma once
 

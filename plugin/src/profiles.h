@@ -12,8 +12,8 @@ namespace tyndall {
 /// and its epipolar slices cover only the wedge that can see the cone (epipolar/slice_arc.h), so
 /// the same accuracy costs it different parameters than a directional light; the sweep chooses a
 /// row for each over the scenes of that kind. Point lights take the local row: the sweep has no
-/// point-light scene (its Reference takes 34 s a frame on lavapipe at 640×360); on point-lamp that
-/// row meets every profile's goals there (docs/EPIPOLAR.md "Spot and point lights").
+/// point-light scene (its Reference is too slow on a CPU driver for a sweep); on point-lamp that
+/// row meets every profile's goals (docs/EPIPOLAR.md "Spot and point lights").
 enum class LightClass : std::uint8_t { Directional, Local };
 
 constexpr LightClass lightClassOf(LightType type) {

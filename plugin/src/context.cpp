@@ -508,6 +508,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
     stats.technique = Technique::None;
     stats.techniqueChange = TechniqueChange::NoExtinction;
+    stats.composite = CompositePath::None;
     stats.epipolar.reset();
     stats.prefiltered.reset();
     stats.debugViewDrawn = false;
@@ -515,6 +516,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     recordAovs(cmd, slot, frame, false);
   } else {
     stats.technique = technique;  // None when nothing scatters
+    stats.composite = CompositePath::Fragment;
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
     recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable);

@@ -34,6 +34,15 @@ const char* to_string(Technique technique) noexcept {
   return "unknown";
 }
 
+const char* to_string(CompositePath path) noexcept {
+  switch (path) {
+    case CompositePath::None: return "none";
+    case CompositePath::Fragment: return "fragment";
+    case CompositePath::Compute: return "compute";
+  }
+  return "unknown";
+}
+
 const char* to_string(TechniqueChange change) noexcept {
   switch (change) {
     case TechniqueChange::None: return "none";

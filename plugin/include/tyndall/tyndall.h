@@ -145,6 +145,9 @@ struct ImageRef {
   std::uint32_t arrayLayer = 0;       ///< the layer of `image` that `view` shows
   VkExtent2D extent{};
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< current layout; never UNDEFINED for inputs
+  /// The usage the image was created with, where the host knows it (0: only each input's
+  /// documented minimum is assumed). A back buffer with STORAGE lets the composite run in compute.
+  VkImageUsageFlags usage = 0;
 
   [[nodiscard]] bool empty() const noexcept { return image == VK_NULL_HANDLE; }
 };
@@ -244,6 +247,9 @@ struct FrameTimings {
   double totalMilliseconds = 0.0;  ///< first pass start to last pass end
 };
 
+enum class CompositePath : std::uint32_t { None, Fragment, Compute };
+const char* to_string(CompositePath path) noexcept;  ///< "none", "fragment", "compute"
+
 /// Why the technique that ran is not the one the profile (or FrameDesc::technique) asked for.
 /// Each is a design decision, documented in docs/INTEGRATION.md "Fallbacks".
 enum class TechniqueChange : std::uint32_t {
@@ -281,6 +287,11 @@ struct Stats {
   bool debugViewDrawn = false;                  ///< false: debugOutput got the dimmed L_in alone
   std::string techniqueNote;                    ///< the above in one line for people; not for parsing
   std::vector<std::string> passesRecorded;      ///< the last `record`'s passes, in order
+  /// How the last frame wrote the back buffer: a compute pass (the back buffer has STORAGE usage
+  /// and a format compute can write) or a full-screen fragment pass; None when it was left alone.
+  CompositePath composite = CompositePath::None;
+  std::uint32_t dispatches = 0;  ///< compute dispatches (direct and indirect) the last `record` recorded
+  std::uint32_t barriers = 0;    ///< pipeline barriers the last `record` recorded
   FrameTimings lastTimings;                     ///< most recent frame whose timestamps were available
   bool timingsValid = false;                    ///< false until `lastTimings` holds one
   bool timestampsSupported = false;

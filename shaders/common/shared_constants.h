@@ -21,8 +21,9 @@ TYN_CONST uint TYN_PHASE_CORNETTE_SHANKS = 3u;
 
 // Workgroup size of the per-pixel compute passes (8×8 suits lavapipe's 8-wide subgroups and GPUs).
 TYN_CONST uint TYN_PIXEL_GROUP_SIZE = 8u;
-// Threads that share one view ray's walk where only a few pixels are marched (reference/
-// split_march.glsl): a power of two; 64 parts of a ray across a 2048² map walk about 64 texels each.
+// Threads that share one view ray's walk where only a few pixels are marched
+// (common/split_march.glsl): a power of two; 64 parts of a ray across a 2048² map walk about 64
+// texels each.
 TYN_CONST uint TYN_SPLIT_MARCH_PARTS = 64u;
 
 struct FrameConstants {

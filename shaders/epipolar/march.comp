@@ -116,7 +116,7 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   if (sr.inside) {
     int sample_count = int(epipolar.tree.x);
     vec2 range = tyn_min_max_range(sample_count, sr.ray);
-    // tyn_part_begin/end (reference_march.glsl): one part is exactly the whole range.
+    // tyn_part_begin/end (common/texel_walk.glsl): one part is exactly the whole range.
     float part_a = tyn_part_begin(range.x, range.y, part, TYN_MARCH_PARTS);
     float part_b = tyn_part_end(range.x, range.y, part, TYN_MARCH_PARTS);
     // coloredStep, capped by the ray's optical depth.

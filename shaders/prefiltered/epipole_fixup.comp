@@ -6,9 +6,9 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "prefiltered/prefiltered_common.glsl"
-#include "reference/split_march.glsl"
+#include "common/split_march.glsl"
 
-// One workgroup per pixel of the block sharing its ray (reference/split_march.glsl): the block is
+// One workgroup per pixel of the block sharing its ray (common/split_march.glsl): the block is
 // a few thousand pixels, too few to keep a GPU busy with one long walk each.
 layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 

@@ -20,7 +20,7 @@
 #include "prefiltered/moments.h"
 #include "prefiltered/weight_taps.h"
 #include "common/medium.glsl"
-#include "reference/reference_march.glsl"
+#include "common/texel_walk.glsl"
 
 layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
 

@@ -1,5 +1,5 @@
 #version 460
-// Reference technique: per-pixel brute force (see reference_march.glsl). Writes L_in for the
+// Reference technique: per-pixel brute force (common/texel_walk.glsl, without hooks). Writes L_in for the
 // composite pass, which computes the view ray's transmittance itself.
 #extension GL_GOOGLE_include_directive : require
 
@@ -14,7 +14,7 @@ layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D out_scattering;
 layout(set = 0, binding = 4) uniform sampler2D light_color;
 
 #include "common/view_ray.glsl"
-#include "reference/reference_march.glsl"
+#include "common/texel_walk.glsl"
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;

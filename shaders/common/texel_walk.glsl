@@ -152,7 +152,7 @@ bool tyn_walk_merges_sections(bool directional) {
 void tyn_walk_add_lit_part(inout vec3 sum, inout vec2 section, bool directional, bool sections,
                            TynLocalLightRay local_ray, vec3 origin, vec3 dir, float a, float b) {
   if (directional) {
-    sum += tyn_light_color_at(origin + dir * (0.5 * (a + b))) * tyn_transmittance_integral(a, b, frame.extinction.rgb);
+    sum += tyn_light_color_at(origin + dir * (0.5 * (a + b))) * tyn_transmittance_integral(a, b, frame.extinction);
   }
 #ifdef TYN_WALK_LIT_SECTIONS
   else if (sections) {
@@ -189,7 +189,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   vec2 section = vec2(t0);  // the lit section being merged (tyn_walk_add_lit_part)
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
   TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   float n = float(size);
 
   ivec2 texel;
@@ -238,7 +238,7 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
     vec3 lit = vec3(0.0);
     TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
     if (tyn_clip_to_shadow_map(r, t_in, t_out)) {
-      if (part == 0u) lit = tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb);
+      if (part == 0u) lit = tyn_transmittance_integral(0.0, t_in, frame.extinction);
       float begin = tyn_part_begin(t_in, t_out, part, parts);
       float end = tyn_part_end(t_in, t_out, part, parts);
 #ifdef TYN_WALK_IN_STEPS
@@ -254,18 +254,18 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
       {
         lit += tyn_walk_shadow_map(0u, origin, dir, begin, end, true);
       }
-      if (part == 0u) lit += tyn_transmittance_integral(t_out, s, frame.extinction.rgb);
+      if (part == 0u) lit += tyn_transmittance_integral(t_out, s, frame.extinction);
     } else if (part == 0u) {
-      lit = tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
+      lit = tyn_transmittance_integral(0.0, s, frame.extinction);
     }
-    float cos_theta = dot(dir, -frame.light_direction.xyz);
-    return frame.light_radiance.rgb * tyn_phase_weighted_scattering(cos_theta) * lit;
+    float cos_theta = dot(dir, -frame.light_direction);
+    return frame.light_radiance * tyn_phase_weighted_scattering(cos_theta) * lit;
   }
 
   // Spot: one frustum around the cone; point: six 90° frusta that tile all directions. Outside
   // the frusta the light does not reach.
   vec3 sum = vec3(0.0);
-  for (uint map = 0u; map < frame.counts.z; ++map) {
+  for (uint map = 0u; map < frame.shadow_map_count; ++map) {
     float t_in = 0.0;
     float t_out = s;
     if (tyn_clip_to_shadow_map(tyn_shadow_ray(map, origin, dir), t_in, t_out)) {

@@ -27,7 +27,7 @@ vec3 tyn_walk_shadow_blocks(uint map, vec3 origin, vec3 dir, float t0, float t1,
   bool lit_steps = (directional && !tyn_has_light_color()) || sections;
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
   TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   float n = float(size);
   int block_size = tyn_shadow_block_size();
   int block_row = int(map) * ((size + block_size - 1) / block_size);  // this map's first row of blocks

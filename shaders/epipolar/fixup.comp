@@ -26,7 +26,7 @@
 // Whether this frame built the blocks: a point light's before the march, whenever the frame has
 // a block image; a directional light's where fixup_args.comp found them worth building.
 bool tyn_shadow_blocks_built() {
-  return TYN_LIGHT_TYPE == TYN_LIGHT_POINT ? epipolar.arc.w != 0.0 : shadow_block_groups[0] != 0u;
+  return TYN_LIGHT_TYPE == TYN_LIGHT_POINT ? epipolar.shadow_block_side != 0u : shadow_block_groups[0] != 0u;
 }
 #define TYN_SCATTERING_LUT_FETCH(texel) imageLoad(scattering_lut, texel).rgb
 #define TYN_SCATTERING_LUT_FRAME

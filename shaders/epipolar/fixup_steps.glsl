@@ -18,7 +18,7 @@
 
 #include "common/texel_walk.glsl"
 
-uint tyn_walk_steps() { return uint(epipolar.arc.z); }
+uint tyn_walk_steps() { return epipolar.fixup_steps; }
 
 // Where step `i` of `steps` begins on [t0, t1] (i = steps: t1): where the ray's clip coordinate
 // along `axis` has gone i/steps of the way from c0 to c1; i/steps of [t0, t1] instead when the ray
@@ -36,7 +36,7 @@ float tyn_step_end(TynShadowRay r, float t0, float t1, uint i, uint steps, int a
 vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, uint part, uint parts,
                          bool directional) {
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   uint steps = tyn_walk_steps();
   // The projected line's main axis in the map, and its clip coordinate at both ends: step i ends
   // where the ray's coordinate on that axis has gone i/N of the way (tyn_edge_crossing solves the
@@ -68,7 +68,7 @@ vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, ui
     if (directional) {
       // As the texel walk: a light-colour texture filtered at the lit part's middle.
       sum += tyn_light_color_at(origin + dir * (0.5 * (lit.x + lit.y))) *
-             tyn_transmittance_integral(lit.x, lit.y, frame.extinction.rgb);
+             tyn_transmittance_integral(lit.x, lit.y, frame.extinction);
     } else if (sections) {
       if (lit.x != run.y) {
         if (run.y > run.x) sum += tyn_point_light_lut_segment(origin, dir, run.x, run.y);

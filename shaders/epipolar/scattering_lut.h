@@ -296,18 +296,18 @@ TYN_END
 #if defined(TYN_SCATTERING_LUT_FRAME) && !defined(__cplusplus)
 TynMedium tyn_medium_from_frame() {
   TynMedium m;
-  m.sigma_t = frame.extinction.rgb;
-  m.components = frame.counts.y;
+  m.sigma_t = frame.extinction;
+  m.components = frame.medium_component_count;
   for (uint c = 0u; c < TYN_MAX_MEDIUM_COMPONENTS; ++c) {
-    m.scattering[c] = frame.scattering[c];
-    m.phase_type[c] = frame.phase_type[c].x;
+    m.scattering[c] = vec4(frame.medium[c].scattering, frame.medium[c].g);
+    m.phase_type[c] = frame.medium[c].phase_type;
   }
   return m;
 }
 
 TynSpotCone tyn_spot_cone_from_frame(TynLightRay r, vec3 view_dir) {
-  return tyn_spot_cone(r, view_dir, frame.light_direction.xyz, frame.light_direction.w,
-                       frame.light_radiance.w);
+  return tyn_spot_cone(r, view_dir, frame.light_direction, frame.cos_outer_cone,
+                       frame.cos_inner_cone);
 }
 
 #if defined(TYN_SCATTERING_LUT_FETCH) && defined(TYN_WALK_LIT_SECTIONS)
@@ -317,8 +317,8 @@ TynSpotCone tyn_spot_cone_from_frame(TynLightRay r, vec3 view_dir) {
 // the medium and the ray are set up per call; the march along a slice hoists them out of its loop.
 vec3 tyn_point_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b) {
   TynMedium m = tyn_medium_from_frame();
-  TynLightRay r = tyn_light_ray(origin, view_dir, frame.light_position.xyz);
-  return frame.light_radiance.rgb * tyn_scattering_lut_segment(m, r, a, b);
+  TynLightRay r = tyn_light_ray(origin, view_dir, frame.light_position);
+  return frame.light_radiance * tyn_scattering_lut_segment(m, r, a, b);
 }
 #endif
 #endif

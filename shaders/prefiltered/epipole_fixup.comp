@@ -13,8 +13,8 @@
 layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 
 void main() {
-  ivec2 pixel = fixup_args.rect.xy + ivec2(gl_WorkGroupID.xy);
-  if (any(greaterThanEqual(pixel, fixup_args.rect.zw))) return;
+  ivec2 pixel = fixup_args.rect_lo + ivec2(gl_WorkGroupID.xy);
+  if (any(greaterThanEqual(pixel, fixup_args.rect_hi))) return;
   float depth = texelFetch(depth_buffer, pixel, 0).r;
   TynViewRay ray = tyn_view_ray(uvec2(pixel), depth);
   vec3 in_scattering = tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);

@@ -7,7 +7,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "epipolar/epipolar_geometry.h"
+#include "common/epipole.h"
 #include "prefiltered/depth_bounds.h"
 #include "prefiltered/rectification_setup.h"
 #include "prefiltered/weight_taps.h"

@@ -110,7 +110,7 @@ float tyn_pf_part_visibility(uint set, float v, float columns, float u_a, float 
 // The reference distance τ at which the row is read at u (the inverse of tyn_weight_tap_u_*).
 float tyn_pf_tap_tau(float u, float reference_sin, float eta) {
   return tyn_pf_projective() ? tyn_weight_tap_tau_projective(pf.projective, u, reference_sin, eta)
-                             : tyn_weight_tap_tau_nonlinear(u, reference_sin, pf.nonlinear.origin.w);
+                             : tyn_weight_tap_tau_nonlinear(u, reference_sin, pf.nonlinear.r_max);
 }
 
 // The visibility at depth_ray of one row's texel of the walk, whose texel bounds are `bounds`:
@@ -280,7 +280,7 @@ void main() {
       // The last tap is the ray's end itself, where the single lookup reads.
       tap_u[k] = k + 1u == tap_count ? uvd.x
                  : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
-                                       : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
+                                       : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.r_max);
       tap_w[k] = tyn_prefix_weight(sigma, tau);
     }
     if (!segmented) {

@@ -53,19 +53,19 @@ vec3 tyn_pf_light_ray_offset(vec2 tc, out float radial) {
     float x = tyn_projective_x(pf.projective, tc.x);
     float eta = tyn_projective_eta(pf.projective, tc.y);
     radial = x;
-    return x * pf.nonlinear.axis_x.xyz + (eta * x) * pf.nonlinear.axis_y.xyz;
+    return x * pf.nonlinear.axis_x + (eta * x) * pf.nonlinear.axis_y;
   }
-  float r = tc.x * pf.nonlinear.origin.w;
-  float phi = (tc.y - 0.5) * pf.nonlinear.axis_x.w;
+  float r = tc.x * pf.nonlinear.r_max;
+  float phi = (tc.y - 0.5) * pf.nonlinear.phi_extent;
   radial = r;
-  return r * (cos(phi) * pf.nonlinear.axis_x.xyz + sin(phi) * pf.nonlinear.axis_y.xyz);
+  return r * (cos(phi) * pf.nonlinear.axis_x + sin(phi) * pf.nonlinear.axis_y);
 }
 
 // Normalised rectified depth of the point at light-frame height h on that light ray, clamped to
 // [0, 1] (klehm2014 §4.1: occluders outside the frustum's range keep their effect).
 float tyn_pf_rectified_depth(float radial, float h) {
   if (tyn_pf_projective()) {
-    return clamp((h / radial - pf.projective.zeta.x) / (pf.projective.zeta.y - pf.projective.zeta.x), 0.0, 1.0);
+    return clamp((h / radial - pf.projective.zeta_lo_guarded) / (pf.projective.zeta_hi_guarded - pf.projective.zeta_lo_guarded), 0.0, 1.0);
   }
   return clamp(tyn_rectified_depth(pf.nonlinear, atan(radial, h)), 0.0, 1.0);
 }
@@ -73,14 +73,14 @@ float tyn_pf_rectified_depth(float radial, float h) {
 // The slice (epipolar plane) of a row: its azimuth φ and, for the projective map, η = tan φ.
 float tyn_pf_row_phi(float v) {
   if (tyn_pf_projective()) return tyn_projective_row_phi(pf.projective, v);
-  return (v - 0.5) * pf.nonlinear.axis_x.w;
+  return (v - 0.5) * pf.nonlinear.phi_extent;
 }
 
 // The sine of the reference ray of a slice (the setting's heuristic), from the slice's own
 // inclination range; a slice that misses the frustum (no pixel reads it) takes the frustum's.
 float tyn_pf_reference_sin(float phi) {
   vec2 range = tyn_slice_theta_range(pf.nonlinear, phi);
-  if (range.x > range.y) range = pf.nonlinear.theta_bounds.xy;
+  if (range.x > range.y) range = pf.nonlinear.theta_range;
   if (pf.spacing == TYN_PF_SPACING_REFERENCE_RAY) return tyn_reference_sin_klehm(range, false);
   // The slice's fastest ray: the inclination nearest π/2 (klehm2014 §3.2's ω_min).
   if (pf.spacing == TYN_PF_SPACING_FASTEST_RAY) return max(sin(clamp(0.5 * TYN_PI, range.x, range.y)), TYN_RECT_MIN_SIN);

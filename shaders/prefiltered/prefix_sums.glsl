@@ -157,7 +157,7 @@ void main() {
   ray.reference_sin = tyn_pf_reference_sin(tyn_pf_row_phi(v));
   ray.projective = tyn_pf_projective();
   ray.eta = ray.projective ? tyn_projective_eta(pf.projective, v) : 0.0;
-  ray.spacing = tyn_slice_sample_spacing(pf.nonlinear.origin.w / float(columns), ray.reference_sin);
+  ray.spacing = tyn_slice_sample_spacing(pf.nonlinear.r_max / float(columns), ray.reference_sin);
   bool bounds_layer = tyn_pf_depth_bounds() && gl_WorkGroupID.z == 0u;
 
   if (TYN_PF_SCAN != 0u) {

@@ -33,8 +33,8 @@ void main() {
   vec3 offset = tyn_pf_light_ray_offset(tc, radial);
   // The host map is orthographic along the light: clip x, y are constant along the light ray and
   // clip depth is affine in the light-frame height h, depth(h) = depth0 + h · depth_per_h.
-  vec4 clip0 = frame.world_to_shadow[0] * vec4(pf.nonlinear.origin.xyz + offset, 1.0);
-  float depth_per_h = (frame.world_to_shadow[0] * vec4(pf.nonlinear.axis_z.xyz, 0.0)).z;
+  vec4 clip0 = frame.world_to_shadow[0] * vec4(pf.nonlinear.origin + offset, 1.0);
+  float depth_per_h = (frame.world_to_shadow[0] * vec4(pf.nonlinear.axis_z, 0.0)).z;
   vec2 uv = clip0.xy / clip0.w * 0.5 + 0.5;
 
   vec2 depths = vec2(TYN_PF_NO_OCCLUDER);

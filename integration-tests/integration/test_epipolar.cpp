@@ -142,7 +142,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
                          });
 
 // The walk's lit sections (a point light's lit texel parts merged and integrated from the
-// semi-analytic table, reference_march.glsl TYN_WALK_LIT_SECTIONS) against the Reference's
+// semi-analytic table, common/texel_walk.glsl TYN_WALK_LIT_SECTIONS) against the Reference's
 // quadrature per texel part: with an epipole block larger than the screen every pixel is fixed up,
 // so the epipolar output is the fix-up's walk alone. What is left is the table's error (≤ 3e-5 of
 // Ĝ, scattering_lut.h) and the quadrature's. A spot light's fix-up keeps the per-part quadrature:

@@ -845,7 +845,7 @@ Slice sliceFromMap(const ShadowMap& m, vec2 origin, vec2 step, int count) {
   return s;
 }
 
-// The texel-exact walk (what reference_march.glsl does): the line p(u) = origin + u·step cut at
+// The texel-exact walk (what common/texel_walk.glsl does): the line p(u) = origin + u·step cut at
 // every texel edge and every integer u (so that each piece lies in one cell), in double.
 struct Piece {
   double a, b;

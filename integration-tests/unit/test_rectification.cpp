@@ -400,7 +400,7 @@ TEST(Rectification, ViewRaysAreRowsOfConstantDepthAndLightRaysTexels) {
         const dvec3 d = rayDirection(c, n);
         const double rayLength = glm::length(farPoint(c, n) - c.position);
         const vec2 slice = tyn_view_ray_slice(gp, f3(d));
-        const float rowV = 0.5f + slice.x / gp.axis_x.w;
+        const float rowV = 0.5f + slice.x / gp.phi_extent;
         const float rowDepth = tyn_rectified_depth(gp, slice.y);
         const double sinTheta = std::sin(rectifiedDouble(rect, c.position + d).z);
         double spread = 0.0;

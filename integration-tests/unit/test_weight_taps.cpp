@@ -271,7 +271,7 @@ TEST(WeightTaps, TapCoordinatesFollowTheRayInBothRectifications) {
     const float tau = rayTau * sinTheta / referenceSin;
 
     const vec3 nonLinear = tyn_rectified_texcoord(rectGpu, tyn_rectified_from_view_ray(rectGpu, dir, float(t)));
-    worstNonLinear = std::max(worstNonLinear, double(std::abs(tyn_weight_tap_u_nonlinear(tau, referenceSin, rectGpu.origin.w) - nonLinear.x)));
+    worstNonLinear = std::max(worstNonLinear, double(std::abs(tyn_weight_tap_u_nonlinear(tau, referenceSin, rectGpu.r_max) - nonLinear.x)));
 
     const vec3 projective = tyn_projective_texcoord_from_offset(projGpu, dir * float(t));
     const float eta = tyn_projective_eta(projGpu, projective.y);

@@ -92,13 +92,20 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   gpu::EpipolarConstants k{};
   k.epipole = gpu::tyn_epipole(lightClip);
   arc = sliceArc(frame.camera, light, k.epipole, glm::vec2(float(extent.width), float(extent.height)));
-  k.arc = glm::vec4(arc.arc, static_cast<float>(settings.fixupSteps), 0.0f);
-  k.counts = glm::uvec4(settings.slices, settings.samplesPerSlice, settings.improvedSamplePlacement ? 1u : 0u,
-                        settings.initialSampleStep);
-  k.refinement = glm::vec4(settings.refinementThreshold, settings.intensityRefinementThreshold,
-                           settings.sliceContrastThreshold, 0.0f);
-  k.params = glm::vec4(settings.epipoleDensity, settings.bilateralDepthThreshold, settings.fixupWeightThreshold,
-                         epipoleBlockRadius(settings, extent.height));
+  k.arc_start = arc.arc.x;
+  k.arc_length = arc.arc.y;
+  k.fixup_steps = settings.fixupSteps;
+  k.slice_count = settings.slices;
+  k.samples_per_slice = settings.samplesPerSlice;
+  k.improved_placement = settings.improvedSamplePlacement ? 1u : 0u;
+  k.initial_sample_step = settings.initialSampleStep;
+  k.depth_break_threshold = settings.refinementThreshold;
+  k.intensity_refinement_threshold = settings.intensityRefinementThreshold;
+  k.slice_contrast_threshold = settings.sliceContrastThreshold;
+  k.epipole_density = settings.epipoleDensity;
+  k.bilateral_depth_threshold = settings.bilateralDepthThreshold;
+  k.fixup_weight_threshold = settings.fixupWeightThreshold;
+  k.epipole_block_radius = epipoleBlockRadius(settings, extent.height);
   // Directional and spot lights march along each slice's line in shadow map 0; a point light's
   // rays cross six maps, so its samples take the Reference's walk. The tree's level 0 lives in
   // the build pass's shared memory, which bounds L (maps larger than 4096² march every cell).
@@ -110,8 +117,10 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
     // With a light-colour texture lit parts are integrated in chunks of coloredStep cells, each
     // uncoloured times its mean colour (min_max_tree.h, tyn_min_max_add_colored; light_color_sums.h).
     const std::uint32_t coloredChunk = frame.lightColor.empty() ? 0u : settings.coloredStep;
-    k.tree = glm::uvec4(static_cast<std::uint32_t>(samples), static_cast<std::uint32_t>(topLevel), tree ? 1u : 0u,
-                        coloredChunk);
+    k.tree_samples = static_cast<std::uint32_t>(samples);
+    k.tree_top_level = static_cast<std::uint32_t>(topLevel);
+    k.tree_enabled = tree ? 1u : 0u;
+    k.colored_chunk = coloredChunk;
   }
   return k;
 }
@@ -137,9 +146,9 @@ std::string epipolarNote(const EpipolarStats& s) {
 }
 
 // How the epipolar technique marches this frame, for the stats.
-EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings) {
-  if (k.tree.x == 0) return EpipolarMarch::PointLightBlockWalk;
-  if (k.tree.z != 0) return EpipolarMarch::MinMaxTree;
+EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light) {
+  if (light == LightType::Point) return EpipolarMarch::PointLightBlockWalk;
+  if (k.tree_enabled != 0) return EpipolarMarch::MinMaxTree;
   return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
 }
 
@@ -453,11 +462,11 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     SliceArc arc;
     epipolarK = epipolarConstants(frame, epipolarSettings, extent, arc);
     epipolarStats = EpipolarStats{epipolarSettings.slices, epipolarSettings.samplesPerSlice,
-                                  epipolarMarch(epipolarK, epipolarSettings), arc.fraction, arc.cone, arc.screen};
+                                  epipolarMarch(epipolarK, epipolarSettings, frame.light.type), arc.fraction, arc.cone, arc.screen};
     note += epipolarNote(*epipolarStats);
-    const std::uint32_t treeSamples = epipolarK.tree.z != 0 ? epipolarK.tree.x : 0;
+    const std::uint32_t treeSamples = epipolarK.tree_enabled != 0 ? epipolarK.tree_samples : 0;
     // The light-colour texture's sums along the slices' lines, for the march along them.
-    const std::uint32_t colorSamples = epipolarK.tree.w != 0 ? epipolarK.tree.x : 0;
+    const std::uint32_t colorSamples = epipolarK.colored_chunk != 0 ? epipolarK.tree_samples : 0;
     // The blocks the walks cross (block_walk.glsl): a point light's march walks every sample; a
     // directional light's fix-up only where it walks texel by texel (not in steps).
     const bool walked = frame.light.type == LightType::Point || epipolarSettings.fixupSteps == 0;
@@ -467,7 +476,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
                                 static_cast<std::uint32_t>(frame.shadowMaps.size()))
             : VkExtent2D{0, 0};
     // Blocks along a map's side: fixup_args.comp sizes a directional light's blocks pass by it.
-    epipolarK.arc.w = static_cast<float>(shadowBlocks.width);
+    epipolarK.shadow_block_side = shadowBlocks.width;
     if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, colorSamples, shadowBlocks, extent,
                                      stats.frameIndex, desc.maxFramesInFlight);
         !o) {

@@ -1,6 +1,7 @@
 #include "frame_setup.h"
 
 #include <cmath>
+#include <cstddef>
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -10,7 +11,23 @@
 
 namespace tyndall {
 
-static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 16 + 4 * 16 + 3 * 16,
+// The shaders' light types are tyndall::LightType's values.
+static_assert(gpu::TYN_LIGHT_DIRECTIONAL == static_cast<std::uint32_t>(LightType::Directional));
+static_assert(gpu::TYN_LIGHT_SPOT == static_cast<std::uint32_t>(LightType::Spot));
+static_assert(gpu::TYN_LIGHT_POINT == static_cast<std::uint32_t>(LightType::Point));
+// FrameConstants' std140 offsets (shaders/common/shared_constants.h), row by row.
+static_assert(sizeof(gpu::MediumComponentConstants) == 32);
+static_assert(offsetof(gpu::FrameConstants, light_position) == 8 * 64);
+static_assert(offsetof(gpu::FrameConstants, cos_outer_cone) == 8 * 64 + 16 + 12);
+static_assert(offsetof(gpu::FrameConstants, cos_inner_cone) == 8 * 64 + 32 + 12);
+static_assert(offsetof(gpu::FrameConstants, extinction) == 8 * 64 + 48);
+static_assert(offsetof(gpu::FrameConstants, medium) == 8 * 64 + 64);
+static_assert(offsetof(gpu::FrameConstants, near_ndc_depth) == 8 * 64 + 64 + 4 * 32);
+static_assert(offsetof(gpu::FrameConstants, light_type) == 8 * 64 + 64 + 4 * 32 + 16);
+static_assert(offsetof(gpu::FrameConstants, shadow_map_size) == 8 * 64 + 64 + 4 * 32 + 16 + 12);
+static_assert(offsetof(gpu::FrameConstants, output_extent) == 8 * 64 + 64 + 4 * 32 + 32);
+static_assert(offsetof(gpu::FrameConstants, has_light_color) == 8 * 64 + 64 + 4 * 32 + 32 + 12);
+static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 32 + 3 * 16,
               "FrameConstants must match its std140 layout");
 static_assert(kMaxMediumComponents == gpu::TYN_MAX_MEDIUM_COMPONENTS);
 static_assert(kMaxShadowMaps == gpu::TYN_MAX_SHADOW_MAPS);
@@ -236,9 +253,11 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   const LightDesc& light = frame.light;
   const glm::vec3 direction =
       light.type == LightType::Point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::vec3(glm::normalize(toVec(light.direction)));
-  k.light_position = glm::vec4(toVec(light.position), 0.0f);
-  k.light_direction = glm::vec4(direction, std::cos(light.outerConeRadians));
-  k.light_radiance = glm::vec4(glm::vec3(toVec(light.color)) * light.intensity, std::cos(light.innerConeRadians));
+  k.light_position = glm::vec3(toVec(light.position));
+  k.light_direction = direction;
+  k.cos_outer_cone = std::cos(light.outerConeRadians);
+  k.light_radiance = glm::vec3(toVec(light.color)) * light.intensity;
+  k.cos_inner_cone = std::cos(light.innerConeRadians);
 
   glm::vec3 extinction(0.0f);
   glm::vec3 scattering(0.0f);
@@ -247,19 +266,24 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
     const glm::vec3 sigmaS = glm::vec3(toVec(c.scattering));
     extinction += sigmaS + glm::vec3(toVec(c.absorption));
     scattering += sigmaS;
-    k.scattering[i] = glm::vec4(sigmaS, c.g);
-    k.phase_type[i] = glm::uvec4(static_cast<std::uint32_t>(c.phase), 0u, 0u, 0u);
+    k.medium[i].scattering = sigmaS;
+    k.medium[i].g = c.g;
+    k.medium[i].phase_type = static_cast<std::uint32_t>(c.phase);
   }
-  k.extinction = glm::vec4(extinction, 0.0f);
-  k.depth_params = glm::vec4(out.projection.nearNdc, out.projection.farNdc,
-                             out.projection.infiniteFar ? 1.0f : 0.0f,
-                             frame.camera.infiniteFarSkyDistance);
-  k.counts = glm::uvec4(static_cast<std::uint32_t>(light.type), static_cast<std::uint32_t>(frame.medium.size()),
-                        static_cast<std::uint32_t>(frame.shadowMaps.size()), mapSize);
+  k.extinction = extinction;
+  k.near_ndc_depth = out.projection.nearNdc;
+  k.far_ndc_depth = out.projection.farNdc;
+  k.far_at_infinity = out.projection.infiniteFar ? 1u : 0u;
+  k.sky_distance = frame.camera.infiniteFarSkyDistance;
+  k.light_type = static_cast<std::uint32_t>(light.type);
+  k.medium_component_count = static_cast<std::uint32_t>(frame.medium.size());
+  k.shadow_map_count = static_cast<std::uint32_t>(frame.shadowMaps.size());
+  k.shadow_map_size = mapSize;
   const bool lightOn = light.intensity > 0.0f && glm::length(glm::vec3(toVec(light.color))) > 0.0f;
   out.scatters = lightOn && glm::length(scattering) > 0.0f;
   out.attenuates = glm::length(extinction) > 0.0f;
-  k.extent = glm::uvec4(outputExtent.width, outputExtent.height, 0u, frame.lightColor.empty() ? 0u : 1u);
+  k.output_extent = glm::uvec2(outputExtent.width, outputExtent.height);
+  k.has_light_color = frame.lightColor.empty() ? 0u : 1u;
   return {};
 }
 

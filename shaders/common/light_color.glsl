@@ -1,11 +1,11 @@
 // The light-colour texture (stained glass, FrameDesc::lightColor): a colour filter laid over shadow
 // map 0's UV square. Needs `frame` and a `light_color` sampler (linear, clamp to edge) in scope.
-// frame.extent.w says whether one is bound; without one, and outside the square, the light is
+// frame.has_light_color says whether one is bound; without one, and outside the square, the light is
 // unfiltered (white).
 #ifndef TYNDALL_LIGHT_COLOR_GLSL
 #define TYNDALL_LIGHT_COLOR_GLSL
 
-bool tyn_has_light_color() { return frame.extent.w != 0u; }
+bool tyn_has_light_color() { return frame.has_light_color != 0u; }
 
 vec3 tyn_light_color_uv(vec2 uv) {
   if (!tyn_has_light_color() || any(lessThan(uv, vec2(0.0))) || any(greaterThan(uv, vec2(1.0)))) return vec3(1.0);

@@ -22,9 +22,9 @@ layout(constant_id = 7) const uint TYN_LIGHT_TYPE = TYN_LIGHT_DIRECTIONAL;
 vec3 tyn_phase_weighted_scattering(float cos_theta) {
   vec3 sum = vec3(0.0);
   for (uint c = 0u; c < TYN_MAX_MEDIUM_COMPONENTS; ++c) {
-    if (c < frame.counts.y) {
-      sum += frame.scattering[c].rgb *
-             tyn_phase(frame.phase_type[c].x, frame.scattering[c].w, cos_theta);
+    if (c < frame.medium_component_count) {
+      sum += frame.medium[c].scattering *
+             tyn_phase(frame.medium[c].phase_type, frame.medium[c].g, cos_theta);
     }
   }
   return sum;
@@ -33,8 +33,8 @@ vec3 tyn_phase_weighted_scattering(float cos_theta) {
 // Hermite falloff between the outer (0) and inner (1) cone; GLSL's smoothstep is undefined when
 // the two edges are equal, which is a valid hard-edged spot.
 float tyn_spot_falloff(float cos_angle) {
-  float cos_outer = frame.light_direction.w;
-  float cos_inner = frame.light_radiance.w;
+  float cos_outer = frame.cos_outer_cone;
+  float cos_inner = frame.cos_inner_cone;
   float x = clamp((cos_angle - cos_outer) / max(cos_inner - cos_outer, 1e-6), 0.0, 1.0);
   return x * x * (3.0 - 2.0 * x);
 }
@@ -42,8 +42,7 @@ float tyn_spot_falloff(float cos_angle) {
 // What a local light's integrand needs of a view ray origin + t·dir, computed once per ray: the
 // quadratures below evaluate it at hundreds of nodes on a coloured spot light's rays, where
 // recomputing the light vector and the colour texture's projection from the point at each node
-// cost a quarter of the march (stained-glass, Performance, 640×360 on lavapipe: 198 → 151 ms;
-// docs/EPIPOLAR.md "Coloured shafts").
+// would cost a quarter of the march (docs/EPIPOLAR.md "Coloured shafts").
 struct TynLocalLightRay {
   vec3 dir;
   vec3 to_light;    // light position − origin
@@ -57,7 +56,7 @@ struct TynLocalLightRay {
 TynLocalLightRay tyn_local_light_ray(vec3 origin, vec3 dir) {
   TynLocalLightRay ray;
   ray.dir = dir;
-  ray.to_light = frame.light_position.xyz - origin;
+  ray.to_light = frame.light_position - origin;
   ray.clip = frame.world_to_shadow[0] * vec4(origin, 1.0);
   ray.clip_step = frame.world_to_shadow[0] * vec4(dir, 0.0);
   ray.colored = tyn_has_light_color();
@@ -73,13 +72,13 @@ vec3 tyn_local_light_integrand(TynLocalLightRay ray, float t) {
   float d = sqrt(d2);
   vec3 omega_l = to_light / d;
   float falloff = TYN_LIGHT_TYPE == TYN_LIGHT_SPOT
-                      ? tyn_spot_falloff(dot(-omega_l, frame.light_direction.xyz))
+                      ? tyn_spot_falloff(dot(-omega_l, frame.light_direction))
                       : 1.0;
   // A light-colour texture filters the light at every quadrature node: next to a spot light the
   // integrand peaks within a texel, where one colour per segment would be off.
   vec3 color = ray.colored ? tyn_light_color_clip(ray.clip + t * ray.clip_step) : vec3(1.0);
-  return frame.light_radiance.rgb * color * (falloff / d2) *
-         tyn_phase_weighted_scattering(dot(ray.dir, omega_l)) * exp(-frame.extinction.rgb * (d + t));
+  return frame.light_radiance * color * (falloff / d2) *
+         tyn_phase_weighted_scattering(dot(ray.dir, omega_l)) * exp(-frame.extinction * (d + t));
 }
 
 // ∫_a^b of the integrand above by the 4-point Gauss–Legendre rule on pieces no longer than half
@@ -87,13 +86,11 @@ vec3 tyn_local_light_integrand(TynLocalLightRay ray, float t) {
 // resolved (relative error for 1/d² below 1.2·10⁻⁷). Needs a < b and a segment on which the
 // integrand is smooth (tyn_local_light_segment_cut splits one at the spot cones first).
 // `pairwise` (a constant at every call site): the loop takes one pair of symmetric nodes per
-// iteration instead of all four. A coloured spot light's march inlines this at several call sites
-// of its loop, and there pairwise measured 151 → 114 ms for the same L_in to the bit
-// (stained-glass, Performance, 640×360, lavapipe: docs/EPIPOLAR.md "Coloured shafts"); the cause,
-// likely the code of four inlined integrands per call site against two, was not isolated. It costs
-// two iterations of lavapipe's loop budget per piece instead of one (docs/REFERENCE.md "Loop
-// budget on lavapipe"), which a texel walk past a point light with 4096² maps cannot spare: the
-// Reference and the fix-up keep four nodes per iteration.
+// iteration instead of all four: faster where a coloured spot light's march inlines this at
+// several call sites of its loop, for the same L_in to the bit (docs/EPIPOLAR.md "Coloured
+// shafts"). It costs two iterations of lavapipe's loop budget per piece instead of one
+// (docs/REFERENCE.md "Loop budget on lavapipe"), which a texel walk past a point light with 4096²
+// maps cannot spare: the Reference and the fix-up keep four nodes per iteration.
 vec3 tyn_local_light_piece(TynLocalLightRay ray, float a, float b, const bool pairwise) {
   float t_closest = clamp(dot(ray.to_light, ray.dir), a, b);
   float d_near = max(length(t_closest * ray.dir - ray.to_light), 1e-4);
@@ -141,9 +138,9 @@ vec2 tyn_quadratic_roots(float A, float B, float C) {
 // than with the distance to the camera, which in float cancelled down to a few digits for rays
 // passing near the light (the roots moved by more than the penumbra).
 vec2 tyn_spot_cone_crossings(vec3 origin, vec3 dir, float cos_angle) {
-  vec3 axis = frame.light_direction.xyz;
-  float t_l = dot(frame.light_position.xyz - origin, dir);
-  vec3 w = origin + t_l * dir - frame.light_position.xyz;  // ⟂ dir, |w| = h
+  vec3 axis = frame.light_direction;
+  float t_l = dot(frame.light_position - origin, dir);
+  vec3 w = origin + t_l * dir - frame.light_position;  // ⟂ dir, |w| = h
   float wa = dot(w, axis);
   float va = dot(dir, axis);
   float c2 = cos_angle * cos_angle;
@@ -157,8 +154,8 @@ vec2 tyn_spot_cone_crossings(vec3 origin, vec3 dir, float cos_angle) {
 // that integrates many parts of one ray computes them once.
 vec4 tyn_local_light_cuts(vec3 origin, vec3 view_dir) {
   if (TYN_LIGHT_TYPE != TYN_LIGHT_SPOT) return vec4(1e30);
-  vec4 c = vec4(tyn_spot_cone_crossings(origin, view_dir, frame.light_direction.w),
-                tyn_spot_cone_crossings(origin, view_dir, frame.light_radiance.w));
+  vec4 c = vec4(tyn_spot_cone_crossings(origin, view_dir, frame.cos_outer_cone),
+                tyn_spot_cone_crossings(origin, view_dir, frame.cos_inner_cone));
   // A sorting network.
   c = vec4(min(c.x, c.y), max(c.x, c.y), min(c.z, c.w), max(c.z, c.w));
   c = vec4(min(c.x, c.z), min(c.y, c.w), max(c.x, c.z), max(c.y, c.w));  // (lowest, ?, ?, highest)

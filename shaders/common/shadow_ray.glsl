@@ -1,5 +1,5 @@
 // A view ray in a shadow map's clip space, and its clip to the map's bounds: shared by the
-// Reference's texel walk (reference/reference_march.glsl), the epipolar march and the epipolar
+// Reference's texel walk (common/texel_walk.glsl), the epipolar march and the epipolar
 // refinement's shadow test (epipolar/slice_ray.glsl), which must agree on the ray to the bit.
 // Needs `frame` (FrameConstants) in scope.
 #ifndef TYNDALL_SHADOW_RAY_GLSL

@@ -1,5 +1,5 @@
-// The constant blocks shared by the C++ side and the shaders (std140; every member is 16-byte
-// aligned so C++ and GLSL layouts agree; the C++ side static_asserts the sizes).
+// The constant blocks shared by the C++ side and the shaders (std140), and the named values both
+// sides use in them.
 #ifndef TYNDALL_SHARED_CONSTANTS_H
 #define TYNDALL_SHARED_CONSTANTS_H
 
@@ -21,26 +21,60 @@ TYN_CONST uint TYN_PHASE_CORNETTE_SHANKS = 3u;
 
 // Workgroup size of the per-pixel compute passes (8×8 suits lavapipe's 8-wide subgroups and GPUs).
 TYN_CONST uint TYN_PIXEL_GROUP_SIZE = 8u;
-// Threads that share one view ray's walk where only a few pixels are marched (reference/
-// split_march.glsl): a power of two; 64 parts of a ray across a 2048² map walk about 64 texels each.
+// Threads that share one view ray's walk where only a few pixels are marched
+// (common/split_march.glsl): a power of two; 64 parts of a ray across a 2048² map walk about 64
+// texels each.
 TYN_CONST uint TYN_SPLIT_MARCH_PARTS = 64u;
 
+// Bindings that every pass's descriptor set starts with (the composite's has no shadow maps).
+TYN_CONST uint TYN_BINDING_FRAME = 0u;        // FrameConstants (uniform buffer)
+TYN_CONST uint TYN_BINDING_DEPTH = 1u;        // the host's depth buffer
+TYN_CONST uint TYN_BINDING_SHADOW_MAPS = 2u;  // TYN_MAX_SHADOW_MAPS shadow maps
+// The Reference's (reference/reference_scattering.comp, reference_pass.cpp).
+TYN_CONST uint TYN_REFERENCE_BINDING_OUT_SCATTERING = 3u;
+TYN_CONST uint TYN_REFERENCE_BINDING_LIGHT_COLOR = 4u;
+TYN_CONST uint TYN_REFERENCE_BINDING_COUNT = 5u;
+// The composite's and its T AOV's (composite/, composite_pass.cpp): L_in read, or T written.
+TYN_CONST uint TYN_COMPOSITE_BINDING_TARGET = 2u;
+TYN_CONST uint TYN_COMPOSITE_BINDING_COUNT = 3u;
+
+// One component of the medium (std140: 32 bytes, C++ the same).
+struct MediumComponentConstants {
+  vec3 scattering;   // σ_s per scene unit, RGB
+  float g;           // anisotropy of its phase function (Henyey–Greenstein, Cornette–Shanks)
+  uint phase_type;   // TYN_PHASE_*
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+
+// The frame's camera, light and medium, bound as a uniform buffer by every pass. Scalars are
+// grouped in 16-byte rows (a vec3 and a scalar share one), so std140 and C++ place every member at
+// the same offset (frame_setup.cpp static_asserts them).
 struct FrameConstants {
   mat4 view_to_world;                        // camera position in column 3
   mat4 clip_to_view;                         // inverse of the host's projection
   mat4 world_to_shadow[TYN_MAX_SHADOW_MAPS]; // world → shadow clip (depth [0,1])
-  vec4 light_position;    // xyz: spot/point position (scene units)
-  vec4 light_direction;   // xyz: unit direction the light travels; w: cos(outer cone)
-  vec4 light_radiance;    // rgb: colour · intensity; w: cos(inner cone)
-  vec4 extinction;        // rgb: σ_t = Σ (σ_s + σ_a) per scene unit
-  vec4 scattering[TYN_MAX_MEDIUM_COMPONENTS];  // rgb: σ_s of a component; w: its g
-  uvec4 phase_type[TYN_MAX_MEDIUM_COMPONENTS]; // x: TYN_PHASE_* of a component
-  vec4 depth_params;      // x: NDC depth of the near plane; y: of the far plane (sky);
-                          // z: 1 if the far plane is at infinity; w: sky distance then
-  uvec4 counts;           // x: light type; y: medium components; z: shadow maps; w: shadow map size
-  uvec4 extent;           // xy: output extent in pixels; z: unused (0; a frame without
-                          // in-scattering runs no technique); w: 1 when a light-colour texture
-                          // is bound (common/light_color.glsl)
+  vec3 light_position;     // spot/point position (scene units)
+  float pad0;
+  vec3 light_direction;    // unit direction the light travels (directional, spot)
+  float cos_outer_cone;    // spot: cos of the outer half-angle (falloff 0 outside)
+  vec3 light_radiance;     // colour · intensity
+  float cos_inner_cone;    // spot: cos of the inner half-angle (falloff 1 inside)
+  vec3 extinction;         // σ_t = Σ (σ_s + σ_a) per scene unit
+  float pad1;
+  MediumComponentConstants medium[TYN_MAX_MEDIUM_COMPONENTS];
+  float near_ndc_depth;    // NDC depth of the near plane
+  float far_ndc_depth;     // NDC depth of the far plane (the sky)
+  uint far_at_infinity;    // 1: the far plane is at infinity
+  float sky_distance;      // with far_at_infinity: the distance of the sky (scene units)
+  uint light_type;         // TYN_LIGHT_*
+  uint medium_component_count;
+  uint shadow_map_count;   // 1, or 6 for a point light
+  uint shadow_map_size;    // texels along each side of every map
+  uvec2 output_extent;     // pixels
+  uint pad2;               // (a frame without in-scattering runs no technique)
+  uint has_light_color;    // 1 when a light-colour texture is bound (common/light_color.glsl)
 };
 
 TYN_END

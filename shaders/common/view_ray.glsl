@@ -13,15 +13,15 @@ struct TynViewRay {
 // Unit world-space direction of the view ray through a screen point (NDC). It comes from the
 // near-plane point, which exists for every projection convention.
 vec3 tyn_view_direction(vec2 ndc) {
-  vec4 near_point = frame.clip_to_view * vec4(ndc, frame.depth_params.x, 1.0);
+  vec4 near_point = frame.clip_to_view * vec4(ndc, frame.near_ndc_depth, 1.0);
   vec3 view_dir = normalize(near_point.xyz / near_point.w);
   return normalize(mat3(frame.view_to_world) * view_dir);
 }
 
 // Length of the view ray through `ndc` to the surface at `depth` (a depth-buffer value).
 float tyn_view_distance(vec2 ndc, float depth) {
-  bool sky = depth == frame.depth_params.y;
-  if (sky && frame.depth_params.z > 0.5) return frame.depth_params.w;
+  bool sky = depth == frame.far_ndc_depth;
+  if (sky && frame.far_at_infinity != 0u) return frame.sky_distance;
   vec4 surface = frame.clip_to_view * vec4(ndc, depth, 1.0);
   return length(surface.xyz / surface.w);
 }
@@ -35,7 +35,7 @@ TynViewRay tyn_view_ray_ndc(vec2 ndc, float depth) {
 }
 
 // NDC of a pixel's centre (integer pixel coordinates).
-vec2 tyn_pixel_ndc(uvec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frame.extent.xy) * 2.0 - 1.0; }
+vec2 tyn_pixel_ndc(uvec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frame.output_extent) * 2.0 - 1.0; }
 
 // pixel: integer pixel coordinates; depth: the host's depth-buffer value there.
 TynViewRay tyn_view_ray(uvec2 pixel, float depth) { return tyn_view_ray_ndc(tyn_pixel_ndc(pixel), depth); }
@@ -44,7 +44,7 @@ TynViewRay tyn_view_ray(uvec2 pixel, float depth) { return tyn_view_ray_ndc(tyn_
 // depth buffer alone: the composite computes it where it multiplies the back buffer, and the T AOV
 // pass where the host asks for it, so no technique stores it.
 vec3 tyn_view_transmittance(uvec2 pixel, float depth) {
-  return exp(-frame.extinction.rgb * tyn_view_distance(tyn_pixel_ndc(pixel), depth));
+  return exp(-frame.extinction * tyn_view_distance(tyn_pixel_ndc(pixel), depth));
 }
 
 #endif

@@ -9,9 +9,9 @@
 
 #include "common/shared_constants.h"
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; };
-layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
-layout(set = 0, binding = 2) uniform sampler2D in_scattering;
+layout(set = 0, binding = TYN_BINDING_FRAME, std140) uniform FrameBlock { FrameConstants frame; };
+layout(set = 0, binding = TYN_BINDING_DEPTH) uniform sampler2D depth_buffer;
+layout(set = 0, binding = TYN_COMPOSITE_BINDING_TARGET) uniform sampler2D in_scattering;
 
 #include "common/view_ray.glsl"
 

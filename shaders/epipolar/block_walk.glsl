@@ -1,5 +1,5 @@
 // The epipolar passes' walk of a shadow map: the Reference's texel walk
-// (reference/reference_march.glsl, tyn_walk_shadow_map) that crosses a block of
+// (common/texel_walk.glsl, tyn_walk_shadow_map; this is its TYN_WALK_SHADOW_BLOCKS hook) that crosses a block of
 // tyn_shadow_block_size()² texels in one step where the block's depth range (shadow_blocks.comp)
 // decides every texel the same way — the ray at or in front of the nearest occluder (all lit) or
 // behind the farthest (all shadowed, skipped) — and walks it texel by texel otherwise. A
@@ -19,7 +19,7 @@
 #ifndef TYNDALL_BLOCK_WALK_GLSL
 #define TYNDALL_BLOCK_WALK_GLSL
 
-#include "reference/reference_march.glsl"
+#include "common/texel_walk.glsl"
 
 vec3 tyn_walk_shadow_blocks(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional) {
   bool sections = tyn_walk_merges_sections(directional);
@@ -27,7 +27,7 @@ vec3 tyn_walk_shadow_blocks(uint map, vec3 origin, vec3 dir, float t0, float t1,
   bool lit_steps = (directional && !tyn_has_light_color()) || sections;
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
   TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   float n = float(size);
   int block_size = tyn_shadow_block_size();
   int block_row = int(map) * ((size + block_size - 1) / block_size);  // this map's first row of blocks

@@ -8,16 +8,16 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
   uvec2 id = gl_GlobalInvocationID.xy;  // x: sample, y: slice
-  if (id.x >= epipolar.counts.y || id.y >= epipolar.counts.x) return;
+  if (id.x >= epipolar.samples_per_slice || id.y >= epipolar.slice_count) return;
   vec2 extent = tyn_output_extent();
   vec4 end_points = imageLoad(slice_end_points, ivec2(id.y, 0));
-  uint count = tyn_slice_sample_count(end_points, extent, epipolar.counts.y, epipolar.params.x,
-                                      epipolar.counts.z != 0u);
+  uint count = tyn_slice_sample_count(end_points, extent, epipolar.samples_per_slice, epipolar.epipole_density,
+                                      epipolar.improved_placement != 0u);
   if (id.x >= count) {
     imageStore(epipolar_coordinates, ivec2(id), vec4(0.0));
     return;
   }
-  vec2 ndc = tyn_sample_position(end_points, float(id.x), count, epipolar.params.x);
+  vec2 ndc = tyn_sample_position(end_points, float(id.x), count, epipolar.epipole_density);
   // Samples lie on the hull of the pixel centres: the pixel containing one is always on screen.
   uvec2 pixel = uvec2(clamp(floor(tyn_pixel_from_ndc(ndc, extent)), vec2(0.0), extent - 1.0));
   float pixel_depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;

@@ -9,7 +9,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
   uvec2 id = gl_GlobalInvocationID.xy;  // x: sample, y: slice
-  if (id.x >= epipolar.counts.y || id.y >= epipolar.counts.x) return;
+  if (id.x >= epipolar.samples_per_slice || id.y >= epipolar.slice_count) return;
   uint source = imageLoad(interpolation_source, ivec2(id)).x;
   if (source == TYN_EPIPOLAR_NO_SOURCE || (source & 0xffffu) != id.x) return;
   vec2 extent = tyn_output_extent();

@@ -2,47 +2,46 @@
 #ifndef TYNDALL_EPIPOLAR_COMMON_GLSL
 #define TYNDALL_EPIPOLAR_COMMON_GLSL
 
-
 #include "common/shared_constants.h"
 #include "epipolar/epipolar_constants.h"
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; };
-layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
-layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FRAME, std140) uniform FrameBlock { FrameConstants frame; };
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_DEPTH) uniform sampler2D depth_buffer;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SHADOW_MAPS) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 // (entry.xy, exit.xy) per slice, NDC; TYN_EPIPOLAR_INVALID_COORD for a culled slice.
-layout(set = 0, binding = 3, rgba32f) uniform image2D slice_end_points;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SLICE_END_POINTS, rgba32f) uniform image2D slice_end_points;
 // Per (sample, slice): NDC xy, view-ray length to the surface, 1 when the sample is valid.
-layout(set = 0, binding = 4, rgba32f) uniform image2D epipolar_coordinates;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_COORDINATES, rgba32f) uniform image2D epipolar_coordinates;
 // Per (sample, slice): L_in of the ray-marched sample.
-layout(set = 0, binding = 5, rgba32f) uniform image2D epipolar_scattering;
-layout(set = 0, binding = 6, rgba32f) uniform image2D out_scattering;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SAMPLE_SCATTERING, rgba32f) uniform image2D epipolar_scattering;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_OUT_SCATTERING, rgba32f) uniform image2D out_scattering;
 // Nearest and farthest depth per block of tyn_shadow_block_size()² texels of each shadow map,
 // map m's in rows [m · side, (m + 1) · side) (shadow_blocks.comp), for a directional light's fix-up
 // and a point light's march and fix-up (block_walk.glsl); 1 × 1 otherwise.
-layout(set = 0, binding = 7, rg32f) uniform image2D shadow_blocks;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SHADOW_BLOCKS, rg32f) uniform image2D shadow_blocks;
 // Texels along a block's side: a point light's (six maps) or a directional light's.
 int tyn_shadow_block_size() {
-  return int(frame.counts.z > 1u ? TYN_EPIPOLAR_POINT_SHADOW_BLOCK : TYN_EPIPOLAR_SHADOW_BLOCK);
+  return int(frame.light_type == TYN_LIGHT_POINT ? TYN_EPIPOLAR_POINT_SHADOW_BLOCK : TYN_EPIPOLAR_SHADOW_BLOCK);
 }
 // Pixels the unwarp could not interpolate, count first (read back for the stats).
-layout(set = 0, binding = 8, std430) buffer FixupList {
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_LIST, std430) buffer FixupList {
   uint fixup_count;
   uint fixup_pixels[];
 };
 // VkDispatchIndirectCommand for the fix-up pass, then one for the shadow-map blocks pass, which
 // runs (and the fix-up walks the blocks) only where fixup_args.comp finds it worth its cost.
-layout(set = 0, binding = 9, std430) buffer FixupArgs {
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_ARGS, std430) buffer FixupArgs {
   uint fixup_groups[3];
   uint shadow_block_groups[3];
 };
 // Per (sample, slice): the ray-marched samples it is interpolated from, left | right << 16
 // (both equal to the sample itself when it is ray-marched; TYN_EPIPOLAR_NO_SOURCE if invalid).
-layout(set = 0, binding = 10, r32ui) uniform uimage2D interpolation_source;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_INTERPOLATION_SOURCE, r32ui) uniform uimage2D interpolation_source;
 // Per slice: where its line starts in shadow-map UV and its unit direction (yusov2013 "Slice UV
 // origin & direction"), TYN_EPIPOLAR_INVALID_COORD when tyn_slice_shadow_uv found none.
-layout(set = 0, binding = 11, rgba32f) uniform image2D slice_uv;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SLICE_UV, rgba32f) uniform image2D slice_uv;
 // One row per slice: its 1D min/max binary tree, level after level (min_max_tree.h's layout).
-layout(set = 0, binding = 12, rg32f) uniform image2D min_max_tree;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_MIN_MAX_TREE, rg32f) uniform image2D min_max_tree;
 // The ray-marching samples the refinement chose, sample | slice << 16, with their count (read back
 // for the stats) and the VkDispatchIndirectCommand that runs one march thread per entry of the
 // current round: marching a compact list keeps every lane busy, where a thread per (sample, slice)
@@ -51,7 +50,7 @@ layout(set = 0, binding = 12, rg32f) uniform image2D min_max_tree;
 // round 1 marches [0, n0); round 2 (the samples refine_intensity.comp adds) marches what follows.
 // march_args.comp starts each of these ranges. The header is 8 words
 // (kMarchHeaderWords in epipolar_technique.cpp).
-layout(set = 0, binding = 13, std430) buffer MarchList {
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_MARCH_LIST, std430) buffer MarchList {
   uint march_groups[3];
   uint march_count;        // entries so far
   uint march_first;        // first entry of the current round
@@ -62,27 +61,27 @@ layout(set = 0, binding = 13, std430) buffer MarchList {
 };
 
 // The light-colour texture (common/light_color.glsl); a white texel when the frame has none.
-layout(set = 0, binding = 15) uniform sampler2D light_color;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_LIGHT_COLOR) uniform sampler2D light_color;
 // The spot and point lights' semi-analytic scattering table (epipolar/scattering_lut.h), built by
 // scattering_lut.comp when the medium changes; a 1×1 placeholder before a local light needs it.
-layout(set = 0, binding = 16, rgba32f) uniform image2D scattering_lut;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SCATTERING_LUT, rgba32f) uniform image2D scattering_lut;
 // One slice's prefix sums of the light-colour texture along its line (light_color_sums.h's
 // layout), rebuilt every frame that has a light-colour texture; 1 × 1 otherwise.
-layout(set = 0, binding = 17, rgba32f) uniform image2D light_color_sums;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_LIGHT_COLOR_SUMS, rgba32f) uniform image2D light_color_sums;
 // The debug view (DebugView), bound only for the debug passes.
-layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D debug_image;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_DEBUG_IMAGE, rgba32f) uniform writeonly image2D debug_image;
 
 layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar; };
 
 #include "common/view_ray.glsl"
 #include "epipolar/epipolar_geometry.h"
 
-vec2 tyn_output_extent() { return vec2(frame.extent.xy); }
+vec2 tyn_output_extent() { return vec2(frame.output_extent); }
 
 // Depth of a texel of shadow map 0 (the one a slice's tree is built on), 1 (no occluder) outside
 // the map: min_max_tree.h's TYN_MIN_MAX_SHADOW_TEXEL.
 float tyn_epipolar_shadow_texel(ivec2 texel) {
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) return 1.0;
   return texelFetch(shadow_maps[0], texel, 0).r;
 }
@@ -92,15 +91,15 @@ float tyn_epipolar_shadow_texel(ivec2 texel) {
 // passes that use it, so that a sample's depth (coordinates.comp) and the unwarp's expectation of
 // it (unwarp.comp) come from the same plane.
 vec2 tyn_epipolar_depth_range() {
-  return vec2(min(frame.depth_params.x, frame.depth_params.y), max(frame.depth_params.x, frame.depth_params.y));
+  return vec2(min(frame.near_ndc_depth, frame.far_ndc_depth), max(frame.near_ndc_depth, frame.far_ndc_depth));
 }
 
 vec2 tyn_epipolar_depth_slopes(ivec2 pixel, float depth) {
-  ivec2 last = ivec2(frame.extent.xy) - 1;
+  ivec2 last = ivec2(frame.output_extent) - 1;
   // View z from depth: the z and w rows of clip_to_view (column-major: [column][row]) at this
   // pixel's x, y. The neighbours' x, y differ, but a perspective or orthographic projection's z
   // and w rows do not depend on x, y (an oblique one's would, slightly, over three pixels).
-  vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, vec2(frame.extent.xy));
+  vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, vec2(frame.output_extent));
   mat4 inverse = frame.clip_to_view;
   vec4 to_view_z = vec4(inverse[2][2], inverse[0][2] * ndc.x + inverse[1][2] * ndc.y + inverse[3][2],
                         inverse[2][3], inverse[0][3] * ndc.x + inverse[1][3] * ndc.y + inverse[3][3]);
@@ -117,7 +116,7 @@ vec2 tyn_epipolar_depth_slopes(ivec2 pixel, float depth) {
     bvec3 before = bvec3(pixel[a] >= 1, pixel[a] >= 2, pixel[a] >= 3);
     bvec3 after = bvec3(pixel[a] + 1 <= last[a], pixel[a] + 2 <= last[a], pixel[a] + 3 <= last[a]);
     slopes[a] = tyn_depth_plane_slope(lo[2], lo[1], lo[0], depth, hi[0], hi[1], hi[2], before, after, to_view_z,
-                                      range, epipolar.params.y);
+                                      range, epipolar.bilateral_depth_threshold);
   }
   return slopes;
 }

@@ -1,4 +1,4 @@
-// Push constants of the epipolar passes (shared by C++ and GLSL; 16-byte members).
+// The epipolar passes' push constants and the numbers the passes and the C++ side agree on.
 #ifndef TYNDALL_EPIPOLAR_CONSTANTS_H
 #define TYNDALL_EPIPOLAR_CONSTANTS_H
 
@@ -35,53 +35,76 @@ TYN_CONST uint TYN_EPIPOLAR_TREE_GROUP = 128u;
 TYN_CONST uint TYN_EPIPOLAR_TREE_MAX_SAMPLES = 4096u;
 
 // Texels along each side of the fix-up's shadow-map blocks (shadow_blocks.comp, block_walk.glsl),
-// even (the blocks pass gathers 2 × 2 texels), and the blocks pass's workgroup side. 4 against 8
-// on lavapipe, Performance at 640x360 with 2048² maps: forest's fix-up 143 against 171 ms (the
-// plain walk's 153: forest's blocks mostly hold a canopy and the ground below it, and the smaller
-// ones decide more often), fence's 19 against 20 ms (plain 38).
+// even (the blocks pass gathers 2 × 2 texels), and the blocks pass's workgroup side. Small: a
+// fixed-up pixel's ray crosses canopies and the ground below them, where only small blocks decide.
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK = 4u;
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_GROUP = 8u;
 // The same for a point light's six maps, whose blocks its march walks for every sample: its rays
-// cross wide open space lit by the lamp, where large blocks decide. On lavapipe, High at 640x360
-// with 2048² maps on point-lamp (march + refined march, ms): no blocks 14,872; blocks of 4: 5,599;
-// 8: 3,172; 16: 1,457; 32: 932; 64: 923 (the frame 15.2 s -> 1.10 s at 32), L_in the same to
-// rounding.
+// cross wide open space lit by the lamp, where large blocks decide (beyond 32 the march gains
+// little).
 TYN_CONST uint TYN_EPIPOLAR_POINT_SHADOW_BLOCK = 32u;
 // The blocks are built when at least one pixel per this many texels of the map's side is fixed up.
 // A walk crosses about a map side of texels and the blocks pass reads side² of them, so the
-// threshold scales with the side. On lavapipe (Performance, 640x360, 2048² map) the pass took 6 ms
-// and the block steps saved about 12 µs per fixed-up pixel on pillars and fence (4 ms for
-// pillars' 300 pixels, 17 ms for fence's 1,400): worth it from about 500 pixels, a side / 4.
+// threshold scales with the side; the pass pays for itself from about a side / 4 pixels.
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS = 4u;
 // Most steps of the fix-up's stepped march (EpipolarSettings::fixupSteps, fixup_steps.glsl). A
-// local light's steps may each end a lit run, integrated by quadrature whose loops spend lavapipe's
-// loop budget of 65,535 iterations per invocation (docs/REFERENCE.md "Loop budget on lavapipe"):
-// 256 steps in each of a point light's three crossed maps stay well inside it.
+// local light's steps may each end a lit run integrated by quadrature, whose loops count against
+// lavapipe's loop budget per invocation (docs/REFERENCE.md "Loop budget on lavapipe"): 256 steps in
+// each of a point light's three crossed maps stay well inside it.
 TYN_CONST uint TYN_EPIPOLAR_MAX_FIXUP_STEPS = 256u;
 
+// Bindings of the epipolar passes' one descriptor set (epipolar_common.glsl declares them;
+// EpipolarTechnique writes descriptor i of its array at binding i).
+TYN_CONST uint TYN_EPIPOLAR_BINDING_FRAME = 0u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_DEPTH = 1u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_SHADOW_MAPS = 2u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_SLICE_END_POINTS = 3u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_COORDINATES = 4u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_SAMPLE_SCATTERING = 5u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_OUT_SCATTERING = 6u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_SHADOW_BLOCKS = 7u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_FIXUP_LIST = 8u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_FIXUP_ARGS = 9u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_INTERPOLATION_SOURCE = 10u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_SLICE_UV = 11u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_MIN_MAX_TREE = 12u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_MARCH_LIST = 13u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_DEBUG_IMAGE = 14u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_LIGHT_COLOR = 15u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_SCATTERING_LUT = 16u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_LIGHT_COLOR_SUMS = 17u;
+TYN_CONST uint TYN_EPIPOLAR_BINDING_COUNT = 18u;
+
+// Push constants of the epipolar passes (std430): scalars grouped in 16-byte rows, at the same
+// offsets in C++ (epipolar_technique.cpp static_asserts them).
 struct EpipolarConstants {
-  vec4 epipole;      // homogeneous epipole (tyn_epipole): x, y, w, side
-  uvec4 counts;      // x: slices; y: samples per slice; z: 1 = improved sample placement;
-                     // w: initial sample step (every w-th sample is ray-marched)
-  vec4 params;       // x: epipole density; y: bilateral depth threshold (relative);
-                     // z: minimum bilateral weight before a pixel is fixed up;
-                     // w: radius in pixels around an on-screen epipole that is always fixed up
-  vec4 refinement;   // x: relative depth break between neighbouring samples that makes both
-                     // of them ray-marched samples; y: relative L_in difference between
-                     // neighbouring ray-marched samples that subdivides the interval (second round);
-                     // z: relative L_in difference between a pixel's two slices that sends it to
-                     // the fix-up pass (1: never)
-  uvec4 tree;        // x: 1D samples per slice L (a power of two ≥ the shadow-map size), 0 when
-                     //    the marched samples use the Reference's walk instead (point lights);
-                     // y: highest tree level the march may use (yusov2013's maximum step);
-                     // z: 1 = march along the min/max tree, 0 = the plain march (every cell);
-                     // w: a coloured march's chunk in cells (tyn_min_max_add_colored)
-  vec4 arc;          // xy: the border arc the slices are spread over, (start, length) in perimeter
-                     //     pixels (epipolar_geometry.h "Slice arc"; length ≥ P: the whole border);
-                     // z: the fix-up's steps per map (EpipolarSettings::fixupSteps; 0: the
-                     //    Reference's texel walk); w: blocks along each side of each map in the
-                     //    shadow-map block image this frame (shadowBlockExtent), 0 when the frame
-                     //    has none (a spot light; a directional light's fix-up in steps)
+  vec4 epipole;                         // the homogeneous epipole and its side (tyn_epipole)
+  uint slice_count;                     // EpipolarSettings::slices
+  uint samples_per_slice;               // EpipolarSettings::samplesPerSlice
+  uint improved_placement;              // 1: EpipolarSettings::improvedSamplePlacement
+  uint initial_sample_step;             // every this-many-th sample is ray-marched
+  float epipole_density;                // EpipolarSettings::epipoleDensity
+  float bilateral_depth_threshold;      // relative depth difference of the bilateral weights
+  float fixup_weight_threshold;         // least bilateral weight before a pixel is fixed up
+  float epipole_block_radius;           // pixels around an on-screen epipole always fixed up
+  float depth_break_threshold;          // relative depth break that makes both neighbours marched
+  float intensity_refinement_threshold; // relative L_in difference that subdivides an interval
+  float slice_contrast_threshold;       // relative L_in difference between a pixel's two slices
+                                        // that sends it to the fix-up (1: never)
+  float pad0;
+  uint tree_samples;                    // 1D samples per slice L (a power of two ≥ the shadow-map
+                                        // size); 0 for a point light, which marches no slice line
+  uint tree_top_level;                  // highest tree level the march may use (yusov2013's
+                                        // maximum step)
+  uint tree_enabled;                    // 1: march along the min/max tree; 0: every cell
+  uint colored_chunk;                   // cells per chunk of a coloured march
+                                        // (tyn_min_max_add_colored); 0 without a light colour
+  float arc_start;                      // the border arc the slices are spread over, in perimeter
+  float arc_length;                     // pixels (epipolar_geometry.h "Slice arc"; a length ≥ the
+                                        // perimeter is the whole border)
+  uint fixup_steps;                     // the fix-up's steps per map (0: the texel walk)
+  uint shadow_block_side;               // blocks along each side of each map in this frame's block
+                                        // image (shadowBlockExtent); 0 when it has none
 };
 
 TYN_END

@@ -2,7 +2,7 @@
 // Fix-up: pixels the unwarp could not interpolate are ray-marched with the Reference's walk (the
 // brute-force path and the fix-up run the same code; a point light's lit sections come from the
 // semi-analytic table instead of quadrature per texel). On a GPU one workgroup walks each pixel's
-// ray together (reference/split_march.glsl): there are few such pixels, and one thread each would
+// ray together (common/split_march.glsl): there are few such pixels, and one thread each would
 // leave the GPU idle while a few long walks finish. A CPU driver has no idle lanes to fill and pays
 // for the split (64 partial walks, each finding its start, and the barriers between them): there a
 // directional light's pixels are walked one per thread, as in the Reference (epipolar_technique.cpp,
@@ -11,21 +11,22 @@
 // the walk is replaced by that many steps per map (fixup_steps.glsl), shared by the same threads.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
-// A point light's lit sections from the semi-analytic table (reference_march.glsl).
+// The texel walk's hooks (common/texel_walk.glsl). A point light's lit sections from the
+// semi-analytic table.
 #define TYN_WALK_LIT_SECTIONS
 // A directional light's map and a point light's six crossed block by block where a block decides
 // all its texels.
 #define TYN_WALK_SHADOW_BLOCKS
 // EpipolarSettings::fixupSteps > 0: N steps per map instead of the texel walk.
 #define TYN_WALK_IN_STEPS
-#include "reference/split_march.glsl"
+#include "common/split_march.glsl"
 #include "epipolar/block_walk.glsl"
 #include "epipolar/fixup_steps.glsl"
 
 // Whether this frame built the blocks: a point light's before the march, whenever the frame has
 // a block image; a directional light's where fixup_args.comp found them worth building.
 bool tyn_shadow_blocks_built() {
-  return TYN_LIGHT_TYPE == TYN_LIGHT_POINT ? epipolar.arc.w != 0.0 : shadow_block_groups[0] != 0u;
+  return TYN_LIGHT_TYPE == TYN_LIGHT_POINT ? epipolar.shadow_block_side != 0u : shadow_block_groups[0] != 0u;
 }
 #define TYN_SCATTERING_LUT_FETCH(texel) imageLoad(scattering_lut, texel).rgb
 #define TYN_SCATTERING_LUT_FRAME

@@ -3,7 +3,7 @@
 // the fix-up splits each walk over its workgroup, one thread per pixel when it does not
 // (fixup.comp), up to the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and
 // its debug view loop over the rest): zero groups, and so no work, when the unwarp flagged none.
-// Where a directional light's frame has a block image (EpipolarConstants::arc.w, set by the context
+// Where a directional light's frame has a block image (EpipolarConstants::shadow_block_side, set by the context
 // when its fix-up walks texel by texel) it also sizes the shadow-map blocks pass
 // (shadow_blocks.comp): the blocks read the whole map, a cost the fix-up's block steps repay only
 // when it walks enough rays (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS); otherwise zero groups, and the
@@ -22,8 +22,8 @@ void main() {
   fixup_groups[0] = min(groups, TYN_EPIPOLAR_MAX_GROUPS);
   fixup_groups[1] = 1u;
   fixup_groups[2] = 1u;
-  uint side = uint(epipolar.arc.w);
-  bool blocks = side != 0u && fixup_count * TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS >= frame.counts.w;
+  uint side = epipolar.shadow_block_side;
+  bool blocks = side != 0u && fixup_count * TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS >= frame.shadow_map_size;
   uint block_groups = (side + TYN_EPIPOLAR_SHADOW_BLOCK_GROUP - 1u) / TYN_EPIPOLAR_SHADOW_BLOCK_GROUP;
   shadow_block_groups[0] = blocks ? block_groups : 0u;
   shadow_block_groups[1] = blocks ? block_groups : 0u;

@@ -3,9 +3,8 @@
 // map (along its projected line's main axis), and each step takes its verdict from the one texel
 // under its middle. Equal in the map, not in t: a directional light's map is affine in t, so there
 // the two are the same; a local light's projection moves fastest where the ray passes the light,
-// where its in-scattering peaks (1/d²), and steps equal in t put one or two verdicts across that
-// whole peak (spot-lamp lit by a point light, every pixel fixed up, 64 steps, lit runs by
-// quadrature: 25% relative RMSE equal in t, 7.8% equal in the map).
+// where its in-scattering peaks (1/d²), and steps equal in t would put one or two verdicts across
+// that whole peak.
 // Within a step, its texel's depth is compared with the ray exactly (tyn_texel_lit_part, the
 // Reference's test), so a step whose texel is an occluder the ray passes behind part-way is lit up
 // to the crossing. What the stepped march cannot see is any other texel the step crosses: an
@@ -13,12 +12,13 @@
 // A directional light's lit parts are integrated in closed form, a local light's as below. A pixel
 // then costs N texel reads instead of one per texel its ray crosses (about the map's side: the
 // fix-up's pixels sit at depth breaks, and their rays mostly cross the whole map).
+// This is the texel walk's TYN_WALK_IN_STEPS hook (common/texel_walk.glsl).
 #ifndef TYNDALL_FIXUP_STEPS_GLSL
 #define TYNDALL_FIXUP_STEPS_GLSL
 
-#include "reference/reference_march.glsl"
+#include "common/texel_walk.glsl"
 
-uint tyn_walk_steps() { return uint(epipolar.arc.z); }
+uint tyn_walk_steps() { return epipolar.fixup_steps; }
 
 // Where step `i` of `steps` begins on [t0, t1] (i = steps: t1): where the ray's clip coordinate
 // along `axis` has gone i/steps of the way from c0 to c1; i/steps of [t0, t1] instead when the ray
@@ -36,7 +36,7 @@ float tyn_step_end(TynShadowRay r, float t0, float t1, uint i, uint steps, int a
 vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, uint part, uint parts,
                          bool directional) {
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   uint steps = tyn_walk_steps();
   // The projected line's main axis in the map, and its clip coordinate at both ends: step i ends
   // where the ray's coordinate on that axis has gone i/N of the way (tyn_edge_crossing solves the
@@ -50,10 +50,9 @@ vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, ui
   vec4 cuts = directional ? vec4(0.0) : tyn_local_light_cuts(origin, dir);
   TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
   // A point light's consecutive lit parts are merged into runs and each run integrated from the
-  // semi-analytic table, as the texel walk's sections (reference_march.glsl TYN_WALK_LIT_SECTIONS).
+  // semi-analytic table, as the texel walk's sections (common/texel_walk.glsl TYN_WALK_LIT_SECTIONS).
   // A spot light's (or a coloured light's) lit parts take the quadrature one step at a time: over a
-  // merged run that passes the light, its 64 pieces cannot follow the 1/d² peak (spot-lamp lit by a
-  // point light, every pixel fixed up, 256 steps: 7.8% relative RMSE by quadrature over runs).
+  // merged run that passes the light, its 64 pieces cannot follow the 1/d² peak.
   bool sections = TYN_LIGHT_TYPE == TYN_LIGHT_POINT && !tyn_has_light_color();
   vec2 run = vec2(t0);  // the lit run being merged: [x, y), empty while y ≤ x
   vec3 sum = vec3(0.0);
@@ -69,7 +68,7 @@ vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, ui
     if (directional) {
       // As the texel walk: a light-colour texture filtered at the lit part's middle.
       sum += tyn_light_color_at(origin + dir * (0.5 * (lit.x + lit.y))) *
-             tyn_transmittance_integral(lit.x, lit.y, frame.extinction.rgb);
+             tyn_transmittance_integral(lit.x, lit.y, frame.extinction);
     } else if (sections) {
       if (lit.x != run.y) {
         if (run.y > run.x) sum += tyn_point_light_lut_segment(origin, dir, run.x, run.y);

@@ -18,10 +18,10 @@ void main() {
   vec4 origin_direction = imageLoad(slice_uv, ivec2(slice, 0));
   // Uniform across the workgroup: the march does not read the sums of a slice without a line.
   if (!tyn_slice_valid(origin_direction)) return;
-  int sample_count = int(epipolar.tree.x);
+  int sample_count = int(epipolar.tree_samples);
   int thread = int(gl_LocalInvocationIndex);
   int group = int(TYN_EPIPOLAR_TREE_GROUP);
-  float size = float(frame.counts.w);
+  float size = float(frame.shadow_map_size);
   vec2 origin = vec2(origin_direction.x, origin_direction.y) * size;
   vec2 step = tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w));
 

@@ -20,7 +20,7 @@
 
 // A point light's frame builds its six maps' blocks before the march (EpipolarTechnique::record);
 // a directional light's are built after it, for the fix-up, if at all.
-bool tyn_shadow_blocks_built() { return TYN_LIGHT_TYPE == TYN_LIGHT_POINT && epipolar.arc.w != 0.0; }
+bool tyn_shadow_blocks_built() { return TYN_LIGHT_TYPE == TYN_LIGHT_POINT && epipolar.shadow_block_side != 0u; }
 
 // Specialised per light-colour texture: with one, lit sections are integrated chunk by chunk.
 layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
@@ -64,18 +64,18 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
   float a = max(min(t_a, t_b), 0.0);
   float b = max(t_a, t_b);
   if (TYN_MARCH_LIGHT_COLOR) return tyn_local_light_segment_cut(g_local_ray, g_cuts, a, b, true);
-  return frame.light_radiance.rgb * tyn_spot_segment(g_medium, g_light_ray, g_cone, a, b);
+  return frame.light_radiance * tyn_spot_segment(g_medium, g_light_ray, g_cone, a, b);
 }
 
 // The light's mean colour over [a, b] of the slice's line, from the slice's prefix sums.
-#define TYN_COLOR_SUM(k) imageLoad(light_color_sums, tyn_color_sums_texel(int(epipolar.tree.x), g_slice, k)).rgb
+#define TYN_COLOR_SUM(k) imageLoad(light_color_sums, tyn_color_sums_texel(int(epipolar.tree_samples), g_slice, k)).rgb
 #include "epipolar/light_color_sums.h"
 
 #define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(texel)
-#define TYN_MIN_MAX_COLOR_MEAN(a, b) tyn_color_sums_mean(int(epipolar.tree.x), a, b)
+#define TYN_MIN_MAX_COLOR_MEAN(a, b) tyn_color_sums_mean(int(epipolar.tree_samples), a, b)
 #define TYN_MIN_MAX_SAMPLE(k) tyn_min_max_cell_sample(g_origin_texels, g_step_texels, k)
 #define TYN_MIN_MAX_FETCH(level, index) \
-  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree.x), level) + (index), g_slice)).xy
+  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree_samples), level) + (index), g_slice)).xy
 // The pipeline is specialised per light type (TYN_LIGHT_TYPE, common/medium.glsl), so that the
 // compiler drops the other integral: a run-time choice here costs the directional march several
 // times its time on a CPU driver, whose vectorised code evaluates both sides of the branch.
@@ -97,7 +97,7 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   g_u_of_t = sr.u_of_t;
   if (TYN_LIGHT_TYPE == TYN_LIGHT_SPOT) {
     g_medium = tyn_medium_from_frame();
-    g_light_ray = tyn_light_ray(origin, dir, frame.light_position.xyz);
+    g_light_ray = tyn_light_ray(origin, dir, frame.light_position);
     g_cone = tyn_spot_cone_from_frame(g_light_ray, dir);
   }
   if (TYN_MARCH_LIGHT_COLOR && TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) {
@@ -108,28 +108,28 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
   vec3 unshadowed = vec3(0.0);
   if (directional && part == 0u) {
-    unshadowed = sr.inside ? tyn_transmittance_integral(0.0, sr.t_in, frame.extinction.rgb) +
-                                 tyn_transmittance_integral(sr.t_out, s, frame.extinction.rgb)
-                           : tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
+    unshadowed = sr.inside ? tyn_transmittance_integral(0.0, sr.t_in, frame.extinction) +
+                                 tyn_transmittance_integral(sr.t_out, s, frame.extinction)
+                           : tyn_transmittance_integral(0.0, s, frame.extinction);
   }
   vec3 lit = vec3(0.0);
   if (sr.inside) {
-    int sample_count = int(epipolar.tree.x);
+    int sample_count = int(epipolar.tree_samples);
     vec2 range = tyn_min_max_range(sample_count, sr.ray);
-    // tyn_part_begin/end (reference_march.glsl): one part is exactly the whole range.
+    // tyn_part_begin/end (common/texel_walk.glsl): one part is exactly the whole range.
     float part_a = tyn_part_begin(range.x, range.y, part, TYN_MARCH_PARTS);
     float part_b = tyn_part_end(range.x, range.y, part, TYN_MARCH_PARTS);
     // coloredStep, capped by the ray's optical depth.
-    int colored_chunk = TYN_MARCH_LIGHT_COLOR ? tyn_min_max_colored_chunk(sr.ray, int(epipolar.tree.w)) : 0;
+    int colored_chunk = TYN_MARCH_LIGHT_COLOR ? tyn_min_max_colored_chunk(sr.ray, int(epipolar.colored_chunk)) : 0;
     TynMinMaxMarch march =
-        epipolar.tree.z != 0u
-            ? tyn_min_max_march_tree_range(sample_count, int(epipolar.tree.y), sr.ray, colored_chunk, part_a, part_b)
+        epipolar.tree_enabled != 0u
+            ? tyn_min_max_march_tree_range(sample_count, int(epipolar.tree_top_level), sr.ray, colored_chunk, part_a, part_b)
             : tyn_min_max_march_plain_range(sample_count, sr.ray, colored_chunk, part_a, part_b);
     lit = march.lit_integral;
   }
   if (!directional) return lit;
-  float cos_theta = dot(dir, -frame.light_direction.xyz);
-  return frame.light_radiance.rgb * tyn_phase_weighted_scattering(cos_theta) * (unshadowed + lit);
+  float cos_theta = dot(dir, -frame.light_direction);
+  return frame.light_radiance * tyn_phase_weighted_scattering(cos_theta) * (unshadowed + lit);
 }
 
 // This thread's part of the entry's L_in.
@@ -138,9 +138,10 @@ vec3 tyn_march_entry(uvec2 id, uint part) {
   if (coordinates.w <= 0.5) return vec3(0.0);
   vec3 origin = frame.view_to_world[3].xyz;
   vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
-  vec4 origin_direction = epipolar.tree.x != 0u ? imageLoad(slice_uv, ivec2(id.y, 0))
-                                                 : vec4(TYN_EPIPOLAR_INVALID_COORD);
-  // Slices without a line in the map and rays along the light: the Reference's texel walk.
+  // A point light (six maps, no slice line), slices without a line in the map and rays along the
+  // light: the Reference's texel walk.
+  vec4 origin_direction = frame.light_type != TYN_LIGHT_POINT ? imageLoad(slice_uv, ivec2(id.y, 0))
+                                                              : vec4(TYN_EPIPOLAR_INVALID_COORD);
   bool along_slice = tyn_slice_valid(origin_direction);
   TynSliceRay sr;
   if (along_slice) {

@@ -6,7 +6,7 @@
 //
 // ## The 1D slice and its cells
 // A slice's line in shadow-map texel units (uv · N; texel (i, j) covers [i, i+1) × [j, j+1), the
-// convention of reference_march.glsl) is p(u) = origin + u · step, u ∈ [0, L]. Cell k = the part
+// convention of common/texel_walk.glsl) is p(u) = origin + u · step, u ∈ [0, L]. Cell k = the part
 // u ∈ [k, k+1] (k = 0..L−1). The ray march's only question is, per point, "z(u) ≤ depth?".
 //   - The plain march answers it in cell k against ONE depth, the cell's sample d_k = the texel
 //     under the cell centre p(k + ½) (tyn_min_max_sample_texel), solving the linear inequality
@@ -23,7 +23,7 @@
 // step: direction / max(|dir.x|, |dir.y|) in texels (max-norm exactly 1), so L = N samples span any
 // line through an N² map. A longer step silently breaks the guarantee (a test shows it does).
 //
-// ## Depth conventions (those of reference_march.glsl)
+// ## Depth conventions (those of common/texel_walk.glsl)
 // A point is lit when z ≤ d. A depth d ≥ 1 (the clear value: no occluder) lights every point, even
 // z > 1 beyond the map's far plane. Texels outside the map read as 1: outside a directional map
 // everything is lit (a spot light's rays are truncated to its frustum before they get here). The

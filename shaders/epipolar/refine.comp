@@ -26,7 +26,7 @@ shared uint tyn_rank[TYN_REFINE_WORDS];
 shared uint tyn_base;
 
 bool tyn_depth_break(float a, float b) {
-  return abs(a - b) > epipolar.refinement.x * min(a, b);
+  return abs(a - b) > epipolar.depth_break_threshold * min(a, b);
 }
 
 // The ray-marching step at sample k: the initial step, but near the epipole at most
@@ -35,7 +35,7 @@ bool tyn_depth_break(float a, float b) {
 // linear interpolation of 1/r over a step Δ ≤ r/8 is off by at most Δ²/(4r²) < 0.4%, where a fixed
 // step next to the light would interpolate from the light's own (unbounded) value.
 uint tyn_march_step(vec2 here, vec2 next) {
-  uint step = epipolar.counts.w;
+  uint step = epipolar.initial_sample_step;
   if (epipolar.epipole.z > 0.0) {
     vec2 extent = tyn_output_extent();
     float to_epipole = length((here - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent);
@@ -75,8 +75,8 @@ void main() {
   uint slice = gl_WorkGroupID.x;
   uint thread = gl_LocalInvocationIndex;
   vec4 end_points = imageLoad(slice_end_points, ivec2(slice, 0));
-  uint count = tyn_slice_sample_count(end_points, tyn_output_extent(), epipolar.counts.y, epipolar.params.x,
-                                      epipolar.counts.z != 0u);
+  uint count = tyn_slice_sample_count(end_points, tyn_output_extent(), epipolar.samples_per_slice, epipolar.epipole_density,
+                                      epipolar.improved_placement != 0u);
   uint words = (count + 31u) / 32u;
   for (uint w = thread; w < words; w += TYN_EPIPOLAR_REFINE_GROUP) tyn_marked_words[w] = 0u;
   barrier();
@@ -93,7 +93,7 @@ void main() {
     tyn_base = total > 0u ? atomicAdd(march_count, total) : 0u;
   }
   barrier();
-  for (uint k = thread; k < epipolar.counts.y; k += TYN_EPIPOLAR_REFINE_GROUP) {
+  for (uint k = thread; k < epipolar.samples_per_slice; k += TYN_EPIPOLAR_REFINE_GROUP) {
     if (k >= count) {
       imageStore(interpolation_source, ivec2(k, slice), uvec4(TYN_EPIPOLAR_NO_SOURCE));
       continue;

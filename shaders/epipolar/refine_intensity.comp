@@ -9,8 +9,8 @@
 // One workgroup per slice, as refine.comp: each thread takes every TYN_EPIPOLAR_REFINE_GROUP-th
 // sample, finds its interval from its own interpolation sources (left < k < right when it is not
 // ray-marched) and decides alone whether it becomes a sample and what its new sources are; one
-// atomic per slice reserves the slice's range of the list. (One thread per slice walking its
-// samples was bound by latency on a GPU: 0.1-0.3 ms at 1024 slices on an H100.)
+// atomic per slice reserves the slice's range of the list (one thread per slice walking its
+// samples would be bound by latency on a GPU).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
@@ -20,7 +20,7 @@ bool tyn_interpolation_suspect(vec3 a, vec3 b) {
   vec3 larger = max(a, b);
   vec3 difference = abs(a - b);
   float scale = max(larger.r, max(larger.g, larger.b));
-  return max(difference.r, max(difference.g, difference.b)) > epipolar.refinement.y * scale;
+  return max(difference.r, max(difference.g, difference.b)) > epipolar.intensity_refinement_threshold * scale;
 }
 
 // Spacing of the samples added between ray-marched samples k0 < k1 (≥ 1).
@@ -44,8 +44,8 @@ void main() {
   uint slice = gl_WorkGroupID.x;
   uint thread = gl_LocalInvocationIndex;
   vec4 end_points = imageLoad(slice_end_points, ivec2(slice, 0));
-  uint count = tyn_slice_sample_count(end_points, tyn_output_extent(), epipolar.counts.y, epipolar.params.x,
-                                      epipolar.counts.z != 0u);
+  uint count = tyn_slice_sample_count(end_points, tyn_output_extent(), epipolar.samples_per_slice, epipolar.epipole_density,
+                                      epipolar.improved_placement != 0u);
   if (count < 3u) return;  // the whole workgroup: count is the slice's
   // Count first: the thread's new samples, then its offset in the slice's range.
   uint mine = 0u;

@@ -21,7 +21,7 @@ vec4 tyn_gather_shadow(uint map, vec2 uv) {
 }
 
 void main() {
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   int block_size = tyn_shadow_block_size();
   ivec2 block = ivec2(gl_GlobalInvocationID.xy);
   uint map = gl_GlobalInvocationID.z;

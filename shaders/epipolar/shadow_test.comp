@@ -13,7 +13,7 @@
 
 int g_slice;
 #define TYN_MIN_MAX_FETCH(level, index) \
-  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree.x), level) + (index), g_slice)).xy
+  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree_samples), level) + (index), g_slice)).xy
 #include "epipolar/min_max_tree.h"
 #include "epipolar/slice_ray.glsl"
 
@@ -25,7 +25,7 @@ layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
 // the same homogeneous ray per texel; the margin of 1e-6 (a few ulps of a depth in [0, 1]) keeps
 // its rounding from finding a lit sliver where this test found none.
 bool tyn_degenerate_ray_in_shadow(TynSliceRay sr) {
-  int sample_count = int(epipolar.tree.x);
+  int sample_count = int(epipolar.tree_samples);
   float end = float(sample_count);
   float a = clamp(min(sr.ray.u_begin, sr.ray.u_end), 0.0, end);
   float b = clamp(max(sr.ray.u_begin, sr.ray.u_end), a, end);
@@ -43,7 +43,7 @@ bool tyn_sample_in_shadow(uvec2 id, vec4 origin_direction) {
   if (coordinates.w < 0.5) return false;  // the march writes invalid samples itself
   vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
   TynSliceRay sr = tyn_slice_ray(origin_direction, frame.view_to_world[3].xyz, dir, coordinates.z);
-  if (frame.counts.x == TYN_LIGHT_DIRECTIONAL) {
+  if (frame.light_type == TYN_LIGHT_DIRECTIONAL) {
     if (!sr.inside || sr.t_in > 0.0 || sr.t_out < coordinates.z) return false;
   } else if (!sr.inside) {
     return true;  // a spot light's rays outside its frustum are not lit
@@ -51,11 +51,11 @@ bool tyn_sample_in_shadow(uvec2 id, vec4 origin_direction) {
   if (tyn_slice_ray_degenerate(sr)) return tyn_degenerate_ray_in_shadow(sr);
   // A ray whose far end may be lit is not dark: one node read saves the walk for most rays that
   // leave the camera's shadow (a safe rejection; only "dark" needs the walk's proof).
-  int sample_count = int(epipolar.tree.x);
+  int sample_count = int(epipolar.tree_samples);
   float u_end = clamp(sr.ray.u_end, 0.0, float(sample_count));
   vec2 end_bounds = TYN_MIN_MAX_FETCH(0, min(int(floor(u_end)), sample_count - 1) >> 1);
   if (end_bounds.y >= 1.0 || tyn_min_max_depth_at(sr.ray, u_end) <= end_bounds.y) return false;
-  return tyn_min_max_ray_shadowed(sample_count, int(epipolar.tree.y), sr.ray);
+  return tyn_min_max_ray_shadowed(sample_count, int(epipolar.tree_top_level), sr.ray);
 }
 
 // The kept entries are appended per workgroup: one global atomic per group, not per entry.

@@ -16,7 +16,7 @@ layout(local_size_x = 1) in;
 bool tyn_camera_in_shadow_map() {
   vec4 h0 = frame.world_to_shadow[0] * vec4(frame.view_to_world[3].xyz, 1.0);
   if (h0.w <= 0.0 || abs(h0.x) > h0.w || abs(h0.y) > h0.w) return false;
-  vec2 camera_texels = (vec2(h0.x, h0.y) / h0.w * 0.5 + 0.5) * float(frame.counts.w);
+  vec2 camera_texels = (vec2(h0.x, h0.y) / h0.w * 0.5 + 0.5) * float(frame.shadow_map_size);
   ivec2 t = tyn_min_max_footprint_origin(camera_texels);
   vec2 bounds = tyn_min_max_footprint_bounds(vec4(tyn_epipolar_shadow_texel(t), tyn_epipolar_shadow_texel(t + ivec2(1, 0)),
                                                   tyn_epipolar_shadow_texel(t + ivec2(0, 1)),

@@ -9,9 +9,9 @@ layout(local_size_x = TYN_EPIPOLAR_SLICE_GROUP) in;
 
 void main() {
   uint slice = gl_GlobalInvocationID.x;
-  if (slice >= epipolar.counts.x) return;
+  if (slice >= epipolar.slice_count) return;
   vec2 extent = tyn_output_extent();
-  vec2 exit_point = tyn_arc_exit_point(float(slice), epipolar.counts.x, epipolar.arc.xy, extent);
+  vec2 exit_point = tyn_arc_exit_point(float(slice), epipolar.slice_count, vec2(epipolar.arc_start, epipolar.arc_length), extent);
   vec4 end_points;
   tyn_slice_end_points(epipolar.epipole, exit_point, extent, end_points);
   imageStore(slice_end_points, ivec2(slice, 0), end_points);

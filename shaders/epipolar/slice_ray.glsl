@@ -26,7 +26,7 @@ struct TynSliceRay {
 // The view ray from `origin` along unit `dir` up to distance s, on the slice whose line in
 // shadow-map UV is origin_direction (slice_uv.comp).
 TynSliceRay tyn_slice_ray(vec4 origin_direction, vec3 origin, vec3 dir, float s) {
-  float size = float(frame.counts.w);
+  float size = float(frame.shadow_map_size);
   TynSliceRay sr;
   sr.origin_texels = vec2(origin_direction.x, origin_direction.y) * size;
   sr.step_texels = tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w));
@@ -35,7 +35,7 @@ TynSliceRay tyn_slice_ray(vec4 origin_direction, vec3 origin, vec3 dir, float s)
   sr.t_out = s;
   sr.inside = tyn_clip_to_shadow_map(r, sr.t_in, sr.t_out);
   sr.u_of_t = vec4(0.0);
-  sr.ray = tyn_min_max_ray(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, frame.extinction.rgb);
+  sr.ray = tyn_min_max_ray(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, frame.extinction);
   sr.depths = vec2(0.0);
   if (sr.inside) {
     float inv_step2 = 1.0 / dot(sr.step_texels, sr.step_texels);
@@ -47,7 +47,7 @@ TynSliceRay tyn_slice_ray(vec4 origin_direction, vec3 origin, vec3 dir, float s)
     float u_in = (sr.u_of_t.x + sr.u_of_t.y * sr.t_in) / h_in.w;
     float u_out = (sr.u_of_t.x + sr.u_of_t.y * sr.t_out) / h_out.w;
     sr.depths = vec2(h_in.z / h_in.w, h_out.z / h_out.w);
-    sr.ray = tyn_min_max_ray(u_in, u_out, sr.depths.x, sr.depths.y, sr.t_in, sr.t_out, frame.extinction.rgb);
+    sr.ray = tyn_min_max_ray(u_in, u_out, sr.depths.x, sr.depths.y, sr.t_in, sr.t_out, frame.extinction);
   }
   return sr;
 }

@@ -9,14 +9,14 @@ layout(local_size_x = TYN_EPIPOLAR_SLICE_GROUP) in;
 
 void main() {
   uint slice = gl_GlobalInvocationID.x;
-  if (slice >= epipolar.counts.x) return;
+  if (slice >= epipolar.slice_count) return;
   vec4 end_points = imageLoad(slice_end_points, ivec2(slice, 0));
   vec4 origin_direction = vec4(TYN_EPIPOLAR_INVALID_COORD);
   if (tyn_slice_valid(end_points)) {
     // A spot light's rays are bounded by its cone; a directional map is bounded by its square.
-    vec3 cone = frame.counts.x == TYN_LIGHT_SPOT
-                    ? tyn_spot_cone_uv(frame.world_to_shadow[0], frame.light_position.xyz,
-                                       frame.light_direction.xyz, frame.light_direction.w)
+    vec3 cone = frame.light_type == TYN_LIGHT_SPOT
+                    ? tyn_spot_cone_uv(frame.world_to_shadow[0], frame.light_position,
+                                       frame.light_direction, frame.cos_outer_cone)
                     : vec3(0.0);
     float uv_length;
     tyn_slice_shadow_uv(frame.world_to_shadow[0], frame.view_to_world[3].xyz,

@@ -22,12 +22,12 @@ bool tyn_on_pixel_surface(vec4 coordinates, vec2 pixel_centre, float depth, vec2
   if (coordinates.w < 0.5) return false;
   vec2 offset = tyn_pixel_from_ndc(coordinates.xy, tyn_output_extent()) - pixel_centre;
   float expected = tyn_view_distance(coordinates.xy, tyn_epipolar_depth_at(depth, slopes, offset));
-  return abs(coordinates.z - expected) <= epipolar.params.y * distance;
+  return abs(coordinates.z - expected) <= epipolar.bilateral_depth_threshold * distance;
 }
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(pixel, frame.extent.xy))) return;
+  if (any(greaterThanEqual(pixel, frame.output_extent))) return;
   vec2 extent = tyn_output_extent();
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
@@ -35,14 +35,14 @@ void main() {
 
   vec2 pixel_centre = vec2(pixel) + 0.5;
   vec2 slopes = tyn_epipolar_depth_slopes(ivec2(pixel), depth);
-  uint slices = epipolar.counts.x;
-  float density = epipolar.params.x;
+  uint slices = epipolar.slice_count;
+  float density = epipolar.epipole_density;
   // Next to the projected light, in-scattering varies faster than any sample spacing can follow
   // (1/d² of a local light, the phase peak): that block is ray-marched per pixel (klehm2014
   // Fig. 8). The light may sit just off screen and still have such pixels; at infinity it has none.
   bool near_epipole = epipolar.epipole.z > 1e-6 &&
-                      length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.params.w;
-  float slice_coordinate = tyn_arc_slice_coordinate_of(epipolar.epipole, ndc, slices, epipolar.arc.xy, extent);
+                      length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.epipole_block_radius;
+  float slice_coordinate = tyn_arc_slice_coordinate_of(epipolar.epipole, ndc, slices, vec2(epipolar.arc_start, epipolar.arc_length), extent);
   if (slice_coordinate < 0.0) {
     if (!near_epipole) {
       // Off the slices' arc: the pixel's epipolar plane misses the lit volume (slice_arc.cpp).
@@ -60,8 +60,8 @@ void main() {
     uint slice = s == 0 ? pair.x : pair.y;
     float slice_weight = s == 0 ? 1.0 - second : second;
     vec4 end_points = imageLoad(slice_end_points, ivec2(slice, 0));
-    uint count = tyn_slice_sample_count(end_points, extent, epipolar.counts.y, density,
-                                        epipolar.counts.z != 0u);
+    uint count = tyn_slice_sample_count(end_points, extent, epipolar.samples_per_slice, density,
+                                        epipolar.improved_placement != 0u);
     if (count == 0u || slice_weight <= 0.0) continue;
     float fraction = tyn_slice_fraction(end_points, ndc);
     // A pixel before the slice's entry (the slice enters the screen further out, which happens
@@ -113,13 +113,13 @@ void main() {
   float weight_sum = slice_weight_sum[0] + slice_weight_sum[1];
   // Both slices seen: their interpolated L_in, compared channel by channel against the larger.
   bool slice_edge = false;
-  if (epipolar.refinement.z < 1.0 && slice_weight_sum[0] > 0.0 && slice_weight_sum[1] > 0.0) {
+  if (epipolar.slice_contrast_threshold < 1.0 && slice_weight_sum[0] > 0.0 && slice_weight_sum[1] > 0.0) {
     vec3 a = slice_sum[0] / slice_weight_sum[0];
     vec3 b = slice_sum[1] / slice_weight_sum[1];
-    slice_edge = any(greaterThan(abs(a - b), epipolar.refinement.z * max(max(a, b), vec3(1e-30))));
+    slice_edge = any(greaterThan(abs(a - b), epipolar.slice_contrast_threshold * max(max(a, b), vec3(1e-30))));
   }
 
-  if (weight_sum >= epipolar.params.z && !near_epipole && !slice_edge) {
+  if (weight_sum >= epipolar.fixup_weight_threshold && !near_epipole && !slice_edge) {
     imageStore(out_scattering, ivec2(pixel), vec4(sum / weight_sum, 0.0));
   } else {
     uint slot = atomicAdd(fixup_count, 1u);

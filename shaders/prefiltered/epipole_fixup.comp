@@ -6,15 +6,15 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "prefiltered/prefiltered_common.glsl"
-#include "reference/split_march.glsl"
+#include "common/split_march.glsl"
 
-// One workgroup per pixel of the block sharing its ray (reference/split_march.glsl): the block is
+// One workgroup per pixel of the block sharing its ray (common/split_march.glsl): the block is
 // a few thousand pixels, too few to keep a GPU busy with one long walk each.
 layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 
 void main() {
-  ivec2 pixel = fixup_args.rect.xy + ivec2(gl_WorkGroupID.xy);
-  if (any(greaterThanEqual(pixel, fixup_args.rect.zw))) return;
+  ivec2 pixel = fixup_args.rect_lo + ivec2(gl_WorkGroupID.xy);
+  if (any(greaterThanEqual(pixel, fixup_args.rect_hi))) return;
   float depth = texelFetch(depth_buffer, pixel, 0).r;
   TynViewRay ray = tyn_view_ray(uvec2(pixel), depth);
   vec3 in_scattering = tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);

@@ -20,7 +20,7 @@
 #include "prefiltered/moments.h"
 #include "prefiltered/weight_taps.h"
 #include "common/medium.glsl"
-#include "reference/reference_march.glsl"
+#include "common/texel_walk.glsl"
 
 layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
 
@@ -110,7 +110,7 @@ float tyn_pf_part_visibility(uint set, float v, float columns, float u_a, float 
 // The reference distance τ at which the row is read at u (the inverse of tyn_weight_tap_u_*).
 float tyn_pf_tap_tau(float u, float reference_sin, float eta) {
   return tyn_pf_projective() ? tyn_weight_tap_tau_projective(pf.projective, u, reference_sin, eta)
-                             : tyn_weight_tap_tau_nonlinear(u, reference_sin, pf.nonlinear.origin.w);
+                             : tyn_weight_tap_tau_nonlinear(u, reference_sin, pf.nonlinear.r_max);
 }
 
 // The visibility at depth_ray of one row's texel of the walk, whose texel bounds are `bounds`:
@@ -158,7 +158,7 @@ float tyn_pf_reference_weight(TynPfSegment g, float u) {
 
 // Trimmed segment (depth_bounds.h): segment [u_lo, u_hi] of a row loses the run of texels at each
 // end that the row decides on its own; the runs count 0 or 1 with the pixel's own weights, and the
-// columns between them are walked for up to pf.walks.y steps (depth_bounds.h "Texel walk"); what
+// columns between them are walked for up to pf.texel_walk_steps steps (depth_bounds.h "Texel walk"); what
 // the walk does not reach is reconstructed from the difference of the lookups at its edges.
 // Returns the segment's visibility.
 float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float row_fraction, TynPfSegment g,
@@ -184,7 +184,7 @@ float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float row_fr
   // Each step reads the column's texel bounds in the lookup's two rows once (level 0 of the tree,
   // x = column): merged they decide a run, apart they decide each row of an undecided texel, whose
   // rows are then interpolated by `row_fraction` as the bilinear lookup does.
-  for (uint step = 0u; step < pf.walks.y && first <= q; ++step) {
+  for (uint step = 0u; step < pf.texel_walk_steps && first <= q; ++step) {
     ivec2 texel0 = ivec2(first, rows_columns.x);
     ivec2 texel1 = ivec2(first, rows_columns.y);
     vec2 bounds0 = imageLoad(depth_bounds_texels, texel0).xy;
@@ -217,7 +217,7 @@ float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float row_fr
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(pixel, frame.extent.xy))) return;
+  if (any(greaterThanEqual(pixel, frame.output_extent))) return;
 
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   TynViewRay ray = tyn_view_ray(pixel, depth);
@@ -231,11 +231,11 @@ void main() {
   } else {
     uvd = tyn_rectified_texcoord(pf.nonlinear, tyn_rectified_from_view_ray(pf.nonlinear, ray.direction, s));
   }
-  float columns = float(pf.map.x);
+  float columns = float(pf.map_columns);
   // Short rays (PrefilteredSettings::shortRayColumns): a ray ending within the first few columns
   // of its row is a handful of texels of the rectified map, too few for the reconstruction; its
   // stretch across the host's map is as short, so it takes the Reference's walk instead.
-  if (uvd.x * columns < float(pf.walks.x)) {
+  if (uvd.x * columns < float(pf.short_ray_columns)) {
     imageStore(out_scattering, ivec2(pixel), vec4(tyn_reference_in_scattering(ray.origin, ray.direction, s), 0.0));
     return;
   }
@@ -244,21 +244,21 @@ void main() {
 
   // The ray's pace through its row against the row's reference ray: κ = sin θ_ref / sin θ ≥ 1 for
   // the fastest-ray reference (rayWeightTaps > 1 requires it).
-  uint tap_count = pf.fixup.y;
+  uint tap_count = pf.ray_weight_taps;
   vec2 slice = tyn_view_ray_slice(pf.nonlinear, ray.direction);
   float reference_sin = tyn_pf_reference_sin(slice.x);
   float kappa = max(reference_sin / max(sin(slice.y), TYN_RECT_MIN_SIN), 1.0);
   float tau_end = s / kappa;
   float eta = tyn_pf_projective() ? tyn_projective_eta(pf.projective, uvd.y) : 0.0;
 
-  vec3 to_light = -frame.light_direction.xyz;
-  float beta = pf.bounds.x < 0.0 ? tyn_adaptive_overestimation(to_light, -ray.direction) : pf.bounds.x;
+  vec3 to_light = -frame.light_direction;
+  float beta = pf.overestimation < 0.0 ? tyn_adaptive_overestimation(to_light, -ray.direction) : pf.overestimation;
   // Rays the row's occluders decide on their own (all in front, or none) skip the reconstruction:
   // the row depth bounds (depth_bounds.h), the same for every prefix-sum set.
   float verdict = tyn_pf_depth_bounds() ? tyn_pf_depth_bounds_verdict(uvd.x, v, depth_ray) : -1.0;
   vec3 set_visibility = vec3(max(verdict, 0.0));
-  bool segmented = pf.fixup.z != 0u;
-  for (uint set = 0u; verdict < 0.0 && set < pf.options.z; ++set) {
+  bool segmented = pf.segmented != 0u;
+  for (uint set = 0u; verdict < 0.0 && set < pf.prefix_sum_sets; ++set) {
     TynPfTaps taps;
     taps.v = v;
     if (tap_count <= 1u) {
@@ -280,7 +280,7 @@ void main() {
       // The last tap is the ray's end itself, where the single lookup reads.
       tap_u[k] = k + 1u == tap_count ? uvd.x
                  : tyn_pf_projective() ? tyn_weight_tap_u_projective(pf.projective, tau, reference_sin, eta)
-                                       : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.origin.w);
+                                       : tyn_weight_tap_u_nonlinear(tau, reference_sin, pf.nonlinear.r_max);
       tap_w[k] = tyn_prefix_weight(sigma, tau);
     }
     if (!segmented) {
@@ -300,10 +300,10 @@ void main() {
     // (tyn_segment_coefficients). Its occluders are the row's between two taps, so the prefix's
     // depth bounds at its end decide it when they can, whatever the segments after it hold.
     float visible = 0.0;
-    bool trimmed = pf.fixup.w != 0u;
-    float row_fraction = fract(v * float(pf.map.y) - 0.5);  // the second row's share (tyn_depth_bounds_texels)
-    ivec3 rows_columns = ivec3(tyn_depth_bounds_texels(uvd.x, v, int(pf.map.x), int(pf.map.y), pf.map.w != 0u).yz,
-                               int(pf.map.x));
+    bool trimmed = pf.trimmed != 0u;
+    float row_fraction = fract(v * float(pf.map_rows) - 0.5);  // the second row's share (tyn_depth_bounds_texels)
+    ivec3 rows_columns = ivec3(tyn_depth_bounds_texels(uvd.x, v, int(pf.map_columns), int(pf.map_rows), pf.rows_wrap != 0u).yz,
+                               int(pf.map_columns));
     TynPfSegment segment;
     segment.sigma = sigma;
     segment.own_rate = sigma * kappa;
@@ -337,7 +337,7 @@ void main() {
   vec3 visibility = vec3(set_visibility[pf.channel_set.x], set_visibility[pf.channel_set.y],
                          set_visibility[pf.channel_set.z]);
   vec3 radiance_factor =
-      frame.light_radiance.rgb * tyn_phase_weighted_scattering(dot(ray.direction, to_light));
-  vec3 in_scattering = tyn_prefiltered_inscattering(radiance_factor, visibility, s, frame.extinction.rgb);
+      frame.light_radiance * tyn_phase_weighted_scattering(dot(ray.direction, to_light));
+  vec3 in_scattering = tyn_prefiltered_inscattering(radiance_factor, visibility, s, frame.extinction);
   imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
 }

@@ -13,11 +13,11 @@
 
 layout(local_size_x = TYN_PF_TEXEL_GROUP, local_size_y = TYN_PF_TEXEL_GROUP) in;
 
-layout(set = 0, binding = 7, rgba16) uniform writeonly image2D moment_map_out;
+layout(set = 0, binding = TYN_PF_BINDING_MOMENT_MAP_STORAGE, rgba16) uniform writeonly image2D moment_map_out;
 
 void main() {
   ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
-  int size = int(pf.options.w);
+  int size = int(pf.host_map_size);
   if (any(greaterThanEqual(texel, ivec2(size)))) return;
   float z = tyn_signed_depth(texelFetch(shadow_maps[0], texel, 0).r);
   imageStore(moment_map_out, texel, tyn_quantize_moments4_64(tyn_moments4(z)));

@@ -57,7 +57,7 @@ float tyn_pf_texel_weight(TynPfRowRay ray, uint i, uint columns) {
 // length); the guard only keeps a degenerate row (zero-length texels) finite.
 void tyn_pf_add_texel(TynPfRowRay ray, uint i, uint row, uint slot, bool bounds_layer, inout vec4 average,
                       inout float weight_sum, inout vec2 running) {
-  float weight = tyn_pf_texel_weight(ray, i, pf.map.x);
+  float weight = tyn_pf_texel_weight(ray, i, pf.map_columns);
   weight_sum += weight;
   if (weight_sum > 0.0) average = tyn_prefix_blend(average, tyn_pf_load_rectified(ivec2(i, row), slot), weight, weight_sum);
   if (bounds_layer) running = tyn_depth_bounds_merge(running, imageLoad(depth_bounds_texels, ivec2(i, row)).xy);
@@ -67,7 +67,7 @@ void tyn_pf_add_texel(TynPfRowRay ray, uint i, uint row, uint slot, bool bounds_
 // run (b, B) is the blend that adds one texel: mix(a, b, B / (A + B)); the depth bounds merge by
 // min and max, exactly. Every lane of the workgroup calls it (barriers); the row is uniform.
 void tyn_pf_scan_row(TynPfRowRay ray, uint lane, uint lanes, uint row, uint set, uint slot, bool bounds_layer) {
-  uint columns = pf.map.x;
+  uint columns = pf.map_columns;
   uint run = (columns + lanes - 1u) / lanes;
   uint first = min(lane * run, columns);
   uint last = min(first + run, columns);
@@ -113,7 +113,7 @@ void tyn_pf_scan_row(TynPfRowRay ray, uint lane, uint lanes, uint row, uint set,
 // coherent) before the next. N − 1 merges per row, a few percent of the prefix sums' blends.
 // Called by every invocation of the workgroup (it synchronises them); rows past the map idle.
 void tyn_pf_build_bounds_tree(uint lane, uint lanes, uint row, uint rows) {
-  int columns = int(pf.map.x);
+  int columns = int(pf.map_columns);
   uint levels = tyn_depth_bounds_levels(columns);
   int below = 0;
   int nodes_below = columns;
@@ -139,10 +139,10 @@ void main() {
   uint lane = gl_LocalInvocationID.x;
   uint lanes = gl_WorkGroupSize.x;
   uint row = gl_WorkGroupID.y * gl_WorkGroupSize.y + gl_LocalInvocationID.y;
-  uint columns = pf.map.x;
-  uint rows = pf.map.y;
+  uint columns = pf.map_columns;
+  uint rows = pf.map_rows;
   // The layer after the prefix sums' (set, slot) layers: the trees (uniform per workgroup).
-  if (gl_WorkGroupID.z == pf.options.z * TYN_PF_SLOTS) {
+  if (gl_WorkGroupID.z == pf.prefix_sum_sets * TYN_PF_SLOTS) {
     tyn_pf_build_bounds_tree(lane, lanes, row, rows);
     return;
   }
@@ -157,7 +157,7 @@ void main() {
   ray.reference_sin = tyn_pf_reference_sin(tyn_pf_row_phi(v));
   ray.projective = tyn_pf_projective();
   ray.eta = ray.projective ? tyn_projective_eta(pf.projective, v) : 0.0;
-  ray.spacing = tyn_slice_sample_spacing(pf.nonlinear.origin.w / float(columns), ray.reference_sin);
+  ray.spacing = tyn_slice_sample_spacing(pf.nonlinear.r_max / float(columns), ray.reference_sin);
   bool bounds_layer = tyn_pf_depth_bounds() && gl_WorkGroupID.z == 0u;
 
   if (TYN_PF_SCAN != 0u) {

@@ -82,24 +82,34 @@ TYN_CONST uint TYN_FOURIER_COEFFICIENTS = 32u;
 TYN_CONST uint TYN_FOURIER_HARMONICS = 16u;
 TYN_CONST uint TYN_FOURIER_LAYERS = 8u;
 
-// The per-frame parameters of the non-linear rectification (std140: 16-byte members).
+// The per-frame parameters of the non-linear rectification (std140: a vec3 and a scalar share a
+// 16-byte row, so C++ places every member at the same offset; 144 bytes).
 struct NonLinearRectificationParams {
-  vec4 origin;        // xyz: camera position o, world; w: r_max (scene units)
-  vec4 axis_x;        // xyz: x_L; w: Δφ, the azimuth extent in (0, 2π]
-  vec4 axis_y;        // xyz: y_L = z_L × x_L; w: unused
-  vec4 axis_z;        // xyz: z_L, the direction the light travels; w: unused
-  vec4 theta_bounds;  // x, y: θ_min, θ_max of the view frustum (peters2017 App. A);
-                      // z, w: θ_min', θ_max' with the guard band (the stored depth range)
-  vec4 side_planes[4];  // xyz: inward unit normals of the view frustum's side planes (world,
-                        // through o); w: unused. Used for per-slice inclination ranges.
+  vec3 origin;               // camera position o, world
+  float r_max;               // largest radius r of the map (scene units)
+  vec3 axis_x;               // x_L
+  float phi_extent;          // Δφ, the azimuth extent in (0, 2π]
+  vec3 axis_y;               // y_L = z_L × x_L
+  float pad0;
+  vec3 axis_z;               // z_L, the direction the light travels
+  float pad1;
+  vec2 theta_range;          // θ_min, θ_max of the view frustum (peters2017 App. A)
+  vec2 theta_range_guarded;  // θ_min', θ_max' with the guard band (the stored depth range)
+  vec4 side_planes[4];       // inward unit normals of the view frustum's side planes (world,
+                             // through o) in xyz, w 0: per-slice inclination ranges
 };
 
 // The per-frame parameters of the projective rectification (klehm2014 §4.2).
 struct ProjectiveRectificationParams {
-  mat4 world_to_clip;  // see the header comment; clip.w = x > 0 on the frustum
-  vec4 x_eta;          // x: x_n, y: x_f (light-frame x of the map's first and last column);
-                       // z: η_lo, w: η_hi (row range, η = y/x)
-  vec4 zeta;           // x: ζ_lo', y: ζ_hi' (guarded depth range, ζ = h/x); z, w: unguarded
+  mat4 world_to_clip;     // see the header comment; clip.w = x > 0 on the frustum
+  float x_near;           // x_n, x_f: light-frame x of the map's first and last column
+  float x_far;
+  float eta_lo;           // the row range, η = y/x
+  float eta_hi;
+  float zeta_lo_guarded;  // the guarded depth range, ζ = h/x
+  float zeta_hi_guarded;
+  float zeta_lo;          // the unguarded one
+  float zeta_hi;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -157,21 +167,21 @@ TYN_FUNC vec3 tyn_light_ray_point(NonLinearRectificationParams rect, float r, fl
 // Normalised stored depth of an inclination (the flipped inclination π − θ in the guarded
 // range); unclamped: occluders outside the frustum's range give values outside [0, 1].
 TYN_FUNC float tyn_rectified_depth(NonLinearRectificationParams rect, float theta) {
-  return (rect.theta_bounds.w - theta) / (rect.theta_bounds.w - rect.theta_bounds.z);
+  return (rect.theta_range_guarded.y - theta) / (rect.theta_range_guarded.y - rect.theta_range_guarded.x);
 }
 
 TYN_FUNC float tyn_rectified_theta(NonLinearRectificationParams rect, float depth) {
-  return rect.theta_bounds.w - depth * (rect.theta_bounds.w - rect.theta_bounds.z);
+  return rect.theta_range_guarded.y - depth * (rect.theta_range_guarded.y - rect.theta_range_guarded.x);
 }
 
 // (u, v, depth) of (r, φ, θ); see the header comment.
 TYN_FUNC vec3 tyn_rectified_texcoord(NonLinearRectificationParams rect, vec3 r_phi_theta) {
-  return vec3(r_phi_theta.x / rect.origin.w, 0.5f + r_phi_theta.y / rect.axis_x.w,
+  return vec3(r_phi_theta.x / rect.r_max, 0.5f + r_phi_theta.y / rect.phi_extent,
               tyn_rectified_depth(rect, r_phi_theta.z));
 }
 
 TYN_FUNC vec3 tyn_rectified_from_texcoord(NonLinearRectificationParams rect, vec3 uvd) {
-  return vec3(uvd.x * rect.origin.w, (uvd.y - 0.5f) * rect.axis_x.w, tyn_rectified_theta(rect, uvd.z));
+  return vec3(uvd.x * rect.r_max, (uvd.y - 0.5f) * rect.phi_extent, tyn_rectified_theta(rect, uvd.z));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -208,7 +218,7 @@ TYN_FUNC vec2 tyn_slice_theta_range(NonLinearRectificationParams rect, float phi
 
 // peters2017 §5.1.1: "the distance for the arithmetic mean of the minimal and maximal values of
 // θ" — sin of the mean of the interval given: the slice's (tyn_slice_theta_range) or the frustum's
-// (theta_bounds.xy, the literal reading of the paper; then every row gets the same Δ).
+// (theta_range, the literal reading of the paper; then every row gets the same Δ).
 TYN_FUNC float tyn_reference_sin_mean_theta(vec2 theta_range) {
   return max(sin(0.5f * (theta_range.x + theta_range.y)), TYN_RECT_MIN_SIN);
 }
@@ -357,8 +367,8 @@ TYN_FUNC vec3 tyn_projective_texcoord(ProjectiveRectificationParams proj, vec3 w
 // against the camera's world position, which costs a float world position its precision near a
 // camera far from the origin. Prefer it in per-pixel passes.
 TYN_FUNC vec3 tyn_projective_texcoord_from_offset(ProjectiveRectificationParams proj, vec3 offset) {
-  float xn = proj.x_eta.x;
-  float xf = proj.x_eta.y;
+  float xn = proj.x_near;
+  float xf = proj.x_far;
   vec4 clip = proj.world_to_clip * vec4(offset, 0.0f) + vec4(-2.0f * xf * xn / (xf - xn), 0.0f, 0.0f, 0.0f);
   return vec3(clip.x / clip.w * 0.5f + 0.5f, clip.y / clip.w * 0.5f + 0.5f, clip.z / clip.w);
 }
@@ -367,14 +377,14 @@ TYN_FUNC vec3 tyn_projective_texcoord_from_offset(ProjectiveRectificationParams 
 // linear-fractional (Möbius) map — so distances along a ray do NOT grow by a constant factor per
 // texel, whatever klehm2014 §4.2 (Eq. 12) says; the weights use this exact map instead.
 TYN_FUNC float tyn_projective_x(ProjectiveRectificationParams proj, float u) {
-  float xn = proj.x_eta.x;
-  float xf = proj.x_eta.y;
+  float xn = proj.x_near;
+  float xf = proj.x_far;
   return xn * xf / (xf - u * (xf - xn));
 }
 
 // η and φ = atan η of row coordinate v.
 TYN_FUNC float tyn_projective_eta(ProjectiveRectificationParams proj, float v) {
-  return mix(proj.x_eta.z, proj.x_eta.w, v);
+  return mix(proj.eta_lo, proj.eta_hi, v);
 }
 
 TYN_FUNC float tyn_projective_row_phi(ProjectiveRectificationParams proj, float v) {

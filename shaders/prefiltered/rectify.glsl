@@ -26,15 +26,15 @@ float tyn_pf_occluder_depth(float host, float clear_from, float radial, float de
 
 void main() {
   uvec2 texel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(texel, pf.map.xy))) return;
-  vec2 tc = (vec2(texel) + 0.5) / vec2(pf.map.xy);
+  if (any(greaterThanEqual(texel, uvec2(pf.map_columns, pf.map_rows)))) return;
+  vec2 tc = (vec2(texel) + 0.5) / vec2(uvec2(pf.map_columns, pf.map_rows));
 
   float radial;
   vec3 offset = tyn_pf_light_ray_offset(tc, radial);
   // The host map is orthographic along the light: clip x, y are constant along the light ray and
   // clip depth is affine in the light-frame height h, depth(h) = depth0 + h · depth_per_h.
-  vec4 clip0 = frame.world_to_shadow[0] * vec4(pf.nonlinear.origin.xyz + offset, 1.0);
-  float depth_per_h = (frame.world_to_shadow[0] * vec4(pf.nonlinear.axis_z.xyz, 0.0)).z;
+  vec4 clip0 = frame.world_to_shadow[0] * vec4(pf.nonlinear.origin + offset, 1.0);
+  float depth_per_h = (frame.world_to_shadow[0] * vec4(pf.nonlinear.axis_z, 0.0)).z;
   vec2 uv = clip0.xy / clip0.w * 0.5 + 0.5;
 
   vec2 depths = vec2(TYN_PF_NO_OCCLUDER);
@@ -45,7 +45,7 @@ void main() {
   bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0))) &&
                 abs(depth_per_h) > 0.0;
   if (inside) {
-    if (pf.options.x != 0u) {
+    if (pf.filtered_resampling != 0u) {
       vec4 b = tyn_dequantize_moments4_64(texture(moment_shadow_map, uv));
       vec4 two = tyn_two_depths_from_moments(b.xyz);
       vec2 host = clamp(two.xy * 0.5 + 0.5, 0.0, 1.0);  // signed → [0, 1] host depth
@@ -68,7 +68,7 @@ void main() {
         }
       }
     } else {
-      int size = int(pf.options.w);
+      int size = int(pf.host_map_size);
       ivec2 host_texel = clamp(ivec2(floor(uv * float(size))), ivec2(0), ivec2(size - 1));
       float host = texelFetch(shadow_maps[0], host_texel, 0).r;
       // A texel at the clear value (1) has no occluder (as in the Reference's walk).

@@ -52,11 +52,11 @@
 #define TYN_PF_SLOTS TYN_PF_LAYERS_A
 #endif
 
-layout(set = 0, binding = 10, TYN_PF_FORMAT_A) uniform writeonly image2DArray rectified_out_a;
-layout(set = 0, binding = 14, TYN_PF_FORMAT_A) uniform writeonly image2DArray prefix_out_a;
+layout(set = 0, binding = TYN_PF_BINDING_RECTIFIED_A_STORAGE, TYN_PF_FORMAT_A) uniform writeonly image2DArray rectified_out_a;
+layout(set = 0, binding = TYN_PF_BINDING_PREFIX_A_STORAGE, TYN_PF_FORMAT_A) uniform writeonly image2DArray prefix_out_a;
 #ifdef TYN_PF_FORMAT_B
-layout(set = 0, binding = 11, TYN_PF_FORMAT_B) uniform writeonly image2DArray rectified_out_b;
-layout(set = 0, binding = 15, TYN_PF_FORMAT_B) uniform writeonly image2DArray prefix_out_b;
+layout(set = 0, binding = TYN_PF_BINDING_RECTIFIED_B_STORAGE, TYN_PF_FORMAT_B) uniform writeonly image2DArray rectified_out_b;
+layout(set = 0, binding = TYN_PF_BINDING_PREFIX_B_STORAGE, TYN_PF_FORMAT_B) uniform writeonly image2DArray prefix_out_b;
 #endif
 
 // Slot `slot` of the representation of a light ray whose occluders are at normalised rectified

@@ -119,8 +119,8 @@ TYN_FUNC float tyn_weight_tap_u_nonlinear(float tau, float reference_sin, float 
 TYN_FUNC float tyn_weight_tap_u_projective(ProjectiveRectificationParams proj, float tau, float reference_sin,
                                            float eta) {
   float x = tau * reference_sin / sqrt(1.0f + eta * eta);
-  float xn = proj.x_eta.x;
-  float xf = proj.x_eta.y;
+  float xn = proj.x_near;
+  float xf = proj.x_far;
   return xf * (x - xn) / ((xf - xn) * max(x, 1.0e-30f));
 }
 

@@ -1,5 +1,5 @@
 #version 460
-// Reference technique: per-pixel brute force (see reference_march.glsl). Writes L_in for the
+// Reference technique: per-pixel brute force (common/texel_walk.glsl, without hooks). Writes L_in for the
 // composite pass, which computes the view ray's transmittance itself.
 #extension GL_GOOGLE_include_directive : require
 
@@ -7,18 +7,18 @@
 
 layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
 
-layout(set = 0, binding = 0, std140) uniform FrameBlock { FrameConstants frame; };
-layout(set = 0, binding = 1) uniform sampler2D depth_buffer;
-layout(set = 0, binding = 2) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
-layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D out_scattering;
-layout(set = 0, binding = 4) uniform sampler2D light_color;
+layout(set = 0, binding = TYN_BINDING_FRAME, std140) uniform FrameBlock { FrameConstants frame; };
+layout(set = 0, binding = TYN_BINDING_DEPTH) uniform sampler2D depth_buffer;
+layout(set = 0, binding = TYN_BINDING_SHADOW_MAPS) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
+layout(set = 0, binding = TYN_REFERENCE_BINDING_OUT_SCATTERING, rgba32f) uniform writeonly image2D out_scattering;
+layout(set = 0, binding = TYN_REFERENCE_BINDING_LIGHT_COLOR) uniform sampler2D light_color;
 
 #include "common/view_ray.glsl"
-#include "reference/reference_march.glsl"
+#include "common/texel_walk.glsl"
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(pixel, frame.extent.xy))) return;
+  if (any(greaterThanEqual(pixel, frame.output_extent))) return;
 
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   TynViewRay ray = tyn_view_ray(pixel, depth);

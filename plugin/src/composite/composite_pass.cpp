@@ -9,14 +9,15 @@ namespace tyndall {
 
 namespace {
 
-// Binding 0: FrameConstants; 1: the host's depth buffer; 2: L_in (composite) or T (its AOV pass).
+// The frame's constants, the host's depth buffer, and L_in (composite) or T (its AOV pass).
 void writeSet(const Gpu& gpu, VkDescriptorSet set, VkBuffer constants, const ImageRef& depth,
               VkImageLayout depthLayout, VkDescriptorType targetType, const VkDescriptorImageInfo& target) {
   const VkDescriptorBufferInfo frame{constants, 0, sizeof(gpu::FrameConstants)};
   const VkDescriptorImageInfo depthInfo{VK_NULL_HANDLE, depth.view, depthLayout};
-  std::array<VkWriteDescriptorSet, 3> writes{descriptorWrite(set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
-                                             descriptorWrite(set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
-                                             descriptorWrite(set, 2, targetType)};
+  std::array<VkWriteDescriptorSet, gpu::TYN_COMPOSITE_BINDING_COUNT> writes{
+      descriptorWrite(set, gpu::TYN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
+      descriptorWrite(set, gpu::TYN_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
+      descriptorWrite(set, gpu::TYN_COMPOSITE_BINDING_TARGET, targetType)};
   writes[0].pBufferInfo = &frame;
   writes[1].pImageInfo = &depthInfo;
   writes[2].pImageInfo = &target;
@@ -27,10 +28,10 @@ void writeSet(const Gpu& gpu, VkDescriptorSet set, VkBuffer constants, const Ima
 
 Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
   const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
-  const std::array<VkDescriptorSetLayoutBinding, 3> bindings{{
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fragment, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, &nearest},
-      {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, &nearest},
+  const std::array<VkDescriptorSetLayoutBinding, gpu::TYN_COMPOSITE_BINDING_COUNT> bindings{{
+      {gpu::TYN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, fragment, nullptr},
+      {gpu::TYN_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, &nearest},
+      {gpu::TYN_COMPOSITE_BINDING_TARGET, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, fragment, &nearest},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
   if (Outcome o = createShaderModule(gpu, shaders::composite_vert(), vertex_); !o) return o;
@@ -43,10 +44,10 @@ Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
   if (Outcome o = allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_); !o) return o;
 
   const VkShaderStageFlags compute = VK_SHADER_STAGE_COMPUTE_BIT;
-  const std::array<VkDescriptorSetLayoutBinding, 3> aovBindings{{
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, compute, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, &nearest},
-      {2, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+  const std::array<VkDescriptorSetLayoutBinding, gpu::TYN_COMPOSITE_BINDING_COUNT> aovBindings{{
+      {gpu::TYN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, compute, nullptr},
+      {gpu::TYN_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, &nearest},
+      {gpu::TYN_COMPOSITE_BINDING_TARGET, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
   }};
   if (Outcome o = createLayouts(gpu, aovBindings, nullptr, transmittanceSetLayout_, transmittanceLayout_); !o) {
     return o;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <optional>
 
 #include "epipolar/light_color_sums.h"
@@ -16,7 +17,19 @@ namespace {
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr VkFormat kShadowBlockFormat = VK_FORMAT_R32G32_SFLOAT;  // nearest, farthest depth
-constexpr std::uint32_t kBindings = 18;
+constexpr std::uint32_t kBindings = gpu::TYN_EPIPOLAR_BINDING_COUNT;
+// EpipolarConstants' std430 offsets (shaders/epipolar/epipolar_constants.h), row by row.
+static_assert(offsetof(gpu::EpipolarConstants, slice_count) == 16);
+static_assert(offsetof(gpu::EpipolarConstants, initial_sample_step) == 28);
+static_assert(offsetof(gpu::EpipolarConstants, epipole_density) == 32);
+static_assert(offsetof(gpu::EpipolarConstants, epipole_block_radius) == 44);
+static_assert(offsetof(gpu::EpipolarConstants, depth_break_threshold) == 48);
+static_assert(offsetof(gpu::EpipolarConstants, slice_contrast_threshold) == 56);
+static_assert(offsetof(gpu::EpipolarConstants, tree_samples) == 64);
+static_assert(offsetof(gpu::EpipolarConstants, colored_chunk) == 76);
+static_assert(offsetof(gpu::EpipolarConstants, arc_start) == 80);
+static_assert(offsetof(gpu::EpipolarConstants, shadow_block_side) == 92);
+static_assert(sizeof(gpu::EpipolarConstants) == 96);
 // march.comp's and march_args.comp's TYN_MARCH_PARTS (constant_id 1 is the light-colour switch).
 constexpr std::uint32_t kMarchPartsConstantId = 2;
 // fixup.comp's and fixup_args.comp's TYN_FIXUP_SERIAL.
@@ -28,10 +41,9 @@ static_assert(gpu::TYN_EPIPOLAR_FIXUP_GROUP == gpu::TYN_SPLIT_MARCH_PARTS);
 // Whether the fix-up walks each pixel in one thread (fixup.comp) rather than splitting its walk
 // over a workgroup. Only where the march runs one thread per sample (a CPU driver's default), and
 // only for directional lights: a CPU driver gains nothing from the split and pays each part's setup
-// and the barriers (lavapipe, 640x360, per-pass medians of 3 runs: forest's fix-up 111 -> 80 ms at
-// Balanced, 40 -> 32 at High, pillars' 3.1 -> 2.0), but a local light's walk branches per step
-// (cone, penumbra, table or quadrature, colour), and eight different pixels in one SIMD vector
-// run every branch any of them takes (spot-lamp 19 -> 23 ms, stained-glass 21 -> 31-37 ms).
+// and the barriers, but a local light's walk branches per step (cone, penumbra, table or
+// quadrature, colour), and eight different pixels in one SIMD vector would run every branch any
+// of them takes.
 bool serialFixup(std::uint32_t marchParts, LightType light) {
   return marchParts == 1 && light == LightType::Directional;
 }
@@ -110,25 +122,27 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler l
   marchParts_ = marchParts;
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  // Element i is binding i.
   const std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{{
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, samplers.data()},
-      {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, stage, samplers.data()},
-      {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {5, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {6, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
-      {9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
-      {10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
-      {14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
-      {16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
-      {17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, samplers.data()},
+      {gpu::TYN_EPIPOLAR_BINDING_SHADOW_MAPS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, stage,
+       samplers.data()},
+      {gpu::TYN_EPIPOLAR_BINDING_SLICE_END_POINTS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_COORDINATES, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_SAMPLE_SCATTERING, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_OUT_SCATTERING, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_SHADOW_BLOCKS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_FIXUP_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_FIXUP_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_INTERPOLATION_SOURCE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_SLICE_UV, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_MIN_MAX_TREE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_MARCH_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_DEBUG_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_LIGHT_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
+      {gpu::TYN_EPIPOLAR_BINDING_SCATTERING_LUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_EPIPOLAR_BINDING_LIGHT_COLOR_SUMS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
   }};
   const VkPushConstantRange push{stage, 0, sizeof(gpu::EpipolarConstants)};
   if (Outcome o = createLayouts(gpu, bindings, &push, setLayout_, pipelineLayout_); !o) return o;
@@ -426,47 +440,50 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   const VkDescriptorImageInfo sliceUv{VK_NULL_HANDLE, textures_.sliceUv.view, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo tree{VK_NULL_HANDLE, textures_.tree.view, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo colorSums{VK_NULL_HANDLE, textures_.colorSums.view, VK_IMAGE_LAYOUT_GENERAL};
-  const std::array<VkDescriptorImageInfo, 4> storage{{
-      {VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL},
-      {VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL},
-      {VK_NULL_HANDLE, textures_.scattering.view, VK_IMAGE_LAYOUT_GENERAL},
-      {VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL},
-  }};
+  const VkDescriptorImageInfo endPoints{VK_NULL_HANDLE, textures_.endPoints.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo coordinates{VK_NULL_HANDLE, textures_.coordinates.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo sampleScattering{VK_NULL_HANDLE, textures_.scattering.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkDescriptorImageInfo outScattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorBufferInfo list{fixupList_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo args{fixupArgs_.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorBufferInfo marchList{textures_.marchList.buffer, 0, VK_WHOLE_SIZE};
   const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
 
-  std::array<VkWriteDescriptorSet, kBindings> writes{};
-  auto write = [&](std::size_t i, std::uint32_t binding, VkDescriptorType type, std::uint32_t count) -> VkWriteDescriptorSet& {
-    return writes[i] = descriptorWrite(set, binding, type, count);
-  };
-  write(0, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &constants;
-  write(1, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1).pImageInfo = &depth;
-  write(2, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps).pImageInfo = shadow.data();
-  for (std::uint32_t i = 0; i < storage.size(); ++i) {
-    write(3 + i, 3 + i, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &storage[i];
-  }
-  write(8, 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &list;
-  write(9, 9, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
-  write(10, 10, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &source;
-  write(11, 11, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &sliceUv;
-  write(12, 12, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &tree;
-  write(13, 13, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &marchList;
-  write(14, 15, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1).pImageInfo = &lightColor;
   const VkDescriptorImageInfo lut{VK_NULL_HANDLE,
                                   (scatteringLut_.view != VK_NULL_HANDLE ? scatteringLut_ : scatteringLutPlaceholder_).view,
                                   VK_IMAGE_LAYOUT_GENERAL};
-  write(15, 16, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &lut;
   const OwnedImage& blockImage = shadowBlocksUsed_ ? shadowBlocks_ : shadowBlocksPlaceholder_;
   const VkDescriptorImageInfo blocks{VK_NULL_HANDLE, blockImage.view, VK_IMAGE_LAYOUT_GENERAL};
-  write(7, 7, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &blocks;
-  write(16, 17, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &colorSums;
-  // The debug target exists only in frames that draw a debug view; only its passes read binding 14.
-  const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug, VK_IMAGE_LAYOUT_GENERAL};
-  std::uint32_t count = kBindings - 1;  // binding 14, the debug view, only when drawn
-  if (b.debug != VK_NULL_HANDLE) write(count++, 14, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1).pImageInfo = &debug;
-  gpu.vk.vkUpdateDescriptorSets(gpu.device, count, writes.data(), 0, nullptr);
+  // The debug view's target in frames that draw one; otherwise L_in's target stands in, which no
+  // pass reads through this binding then, so that every binding is written.
+  const VkDescriptorImageInfo debug{VK_NULL_HANDLE, b.debug != VK_NULL_HANDLE ? b.debug : b.scattering,
+                                    VK_IMAGE_LAYOUT_GENERAL};
+
+  // Write i is binding i.
+  std::array<VkWriteDescriptorSet, kBindings> writes{};
+  auto write = [&](std::uint32_t binding, VkDescriptorType type, std::uint32_t count = 1) -> VkWriteDescriptorSet& {
+    return writes[binding] = descriptorWrite(set, binding, type, count);
+  };
+  write(gpu::TYN_EPIPOLAR_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER).pBufferInfo = &constants;
+  write(gpu::TYN_EPIPOLAR_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER).pImageInfo = &depth;
+  write(gpu::TYN_EPIPOLAR_BINDING_SHADOW_MAPS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps).pImageInfo =
+      shadow.data();
+  write(gpu::TYN_EPIPOLAR_BINDING_SLICE_END_POINTS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &endPoints;
+  write(gpu::TYN_EPIPOLAR_BINDING_COORDINATES, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &coordinates;
+  write(gpu::TYN_EPIPOLAR_BINDING_SAMPLE_SCATTERING, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &sampleScattering;
+  write(gpu::TYN_EPIPOLAR_BINDING_OUT_SCATTERING, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &outScattering;
+  write(gpu::TYN_EPIPOLAR_BINDING_SHADOW_BLOCKS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &blocks;
+  write(gpu::TYN_EPIPOLAR_BINDING_FIXUP_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER).pBufferInfo = &list;
+  write(gpu::TYN_EPIPOLAR_BINDING_FIXUP_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER).pBufferInfo = &args;
+  write(gpu::TYN_EPIPOLAR_BINDING_INTERPOLATION_SOURCE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &source;
+  write(gpu::TYN_EPIPOLAR_BINDING_SLICE_UV, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &sliceUv;
+  write(gpu::TYN_EPIPOLAR_BINDING_MIN_MAX_TREE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &tree;
+  write(gpu::TYN_EPIPOLAR_BINDING_MARCH_LIST, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER).pBufferInfo = &marchList;
+  write(gpu::TYN_EPIPOLAR_BINDING_DEBUG_IMAGE, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &debug;
+  write(gpu::TYN_EPIPOLAR_BINDING_LIGHT_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER).pImageInfo = &lightColor;
+  write(gpu::TYN_EPIPOLAR_BINDING_SCATTERING_LUT, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &lut;
+  write(gpu::TYN_EPIPOLAR_BINDING_LIGHT_COLOR_SUMS, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE).pImageInfo = &colorSums;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
 }
 
 void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
@@ -539,10 +556,10 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
   // Each slice's line in the shadow map and its min/max tree: only for the lights that march
   // along one line (directional, spot), the tree only when the march uses it. Before the
   // refinement, which leaves samples whose whole ray the tree shows in shadow out of the march.
-  if (constants.tree.x != 0) {
+  if (light != LightType::Point) {
     pass("epipolar_slice_uv", sliceUvPipeline_,
          [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-    if (constants.tree.z != 0) {
+    if (constants.tree_enabled != 0) {
       pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
     }
     // With a light-colour texture, its sums along each line (the march's mean colours).
@@ -573,12 +590,12 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_
     });
   }
   // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
-  if (constants.tree.x != 0 && constants.tree.z != 0) {
+  if (light != LightType::Point && constants.tree_enabled != 0) {
     pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
     indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, 0);
   }
   marchRound("epipolar_march_args", "epipolar_march");
-  if (constants.refinement.y < 1.0f) {
+  if (constants.intensity_refinement_threshold < 1.0f) {
     pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
     marchRound("epipolar_march_args_refined", "epipolar_march_refined");
   }

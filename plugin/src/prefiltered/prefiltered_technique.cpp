@@ -1,13 +1,14 @@
 #include "prefiltered/prefiltered_technique.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <limits>
 
 #include <glm/gtc/type_ptr.hpp>
 
-#include "epipolar/epipolar_geometry.h"
+#include "common/epipole.h"
 #include "prefiltered/depth_bounds.h"
 #include "prefiltered/rectification_setup.h"
 #include "prefiltered/weight_taps.h"
@@ -26,11 +27,28 @@ static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::ReferenceRay) == gp
 static_assert(static_cast<std::uint32_t>(PrefilteredSpacing::FastestRay) == gpu::TYN_PF_SPACING_FASTEST_RAY);
 static_assert(sizeof(gpu::PrefilteredConstants) == 9 * 16 + (64 + 2 * 16) + 8 * 16,
               "PrefilteredConstants must match its std140 layout");
+// PrefilteredConstants' std140 offsets (shaders/prefiltered/prefiltered_constants.h), row by row.
+constexpr std::size_t kPrefilteredRows = sizeof(gpu::NonLinearRectificationParams) +
+                                         sizeof(gpu::ProjectiveRectificationParams);
+static_assert(offsetof(gpu::PrefilteredConstants, map_columns) == kPrefilteredRows);
+static_assert(offsetof(gpu::PrefilteredConstants, rows_wrap) == kPrefilteredRows + 12);
+static_assert(offsetof(gpu::PrefilteredConstants, filtered_resampling) == kPrefilteredRows + 16);
+static_assert(offsetof(gpu::PrefilteredConstants, host_map_size) == kPrefilteredRows + 28);
+static_assert(offsetof(gpu::PrefilteredConstants, set_extinction) == kPrefilteredRows + 32);
+static_assert(offsetof(gpu::PrefilteredConstants, channel_set) == kPrefilteredRows + 48);
+static_assert(offsetof(gpu::PrefilteredConstants, epipole) == kPrefilteredRows + 64);
+static_assert(offsetof(gpu::PrefilteredConstants, epipole_block_pixels) == kPrefilteredRows + 80);
+static_assert(offsetof(gpu::PrefilteredConstants, trimmed) == kPrefilteredRows + 92);
+static_assert(offsetof(gpu::PrefilteredConstants, overestimation) == kPrefilteredRows + 96);
+static_assert(offsetof(gpu::PrefilteredConstants, depth_bounds) == kPrefilteredRows + 100);
+static_assert(offsetof(gpu::PrefilteredConstants, short_ray_columns) == kPrefilteredRows + 112);
+static_assert(offsetof(gpu::PrefilteredConstants, texel_walk_steps) == kPrefilteredRows + 116);
 static_assert(sizeof(gpu::PrefilteredFixupArgs) == 32);
+static_assert(offsetof(gpu::PrefilteredFixupArgs, rect_lo) == 16);
 
 namespace {
 
-constexpr std::uint32_t kBindings = 20;
+constexpr std::uint32_t kBindings = gpu::TYN_PF_BINDING_COUNT;
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 constexpr VkImageUsageFlags kMapUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
 // The moment shadow map of the filtered resampling: Θ4* in 16-bit UNORM (peters2017 D.1), which
@@ -162,26 +180,26 @@ Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSample
   const VkDescriptorType image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
   const std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{{
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
-      {1, image, 1, stage, nearestSamplers.data()},
-      {2, image, kMaxShadowMaps, stage, nearestSamplers.data()},
-      {3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
-      {4, storage, 1, stage, nullptr},
-      {5, image, 1, stage, &linear},
-      {6, image, 1, stage, &linear},
-      {7, storage, 1, stage, nullptr},
-      {8, image, 1, stage, nearestSamplers.data()},
-      {9, image, 1, stage, nearestSamplers.data()},
-      {10, storage, 1, stage, nullptr},
-      {11, storage, 1, stage, nullptr},
-      {12, image, 1, stage, &prefixSampler_},
-      {13, image, 1, stage, &prefixSampler_},
-      {14, storage, 1, stage, nullptr},
-      {15, storage, 1, stage, nullptr},
-      {16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
-      {17, storage, 1, stage, nullptr},
-      {18, storage, 1, stage, nullptr},
-      {19, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_DEPTH, image, 1, stage, nearestSamplers.data()},
+      {gpu::TYN_PF_BINDING_SHADOW_MAPS, image, kMaxShadowMaps, stage, nearestSamplers.data()},
+      {gpu::TYN_PF_BINDING_CONSTANTS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_OUT_SCATTERING, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_LIGHT_COLOR, image, 1, stage, &linear},
+      {gpu::TYN_PF_BINDING_MOMENT_MAP, image, 1, stage, &linear},
+      {gpu::TYN_PF_BINDING_MOMENT_MAP_STORAGE, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_RECTIFIED_A, image, 1, stage, nearestSamplers.data()},
+      {gpu::TYN_PF_BINDING_RECTIFIED_B, image, 1, stage, nearestSamplers.data()},
+      {gpu::TYN_PF_BINDING_RECTIFIED_A_STORAGE, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_RECTIFIED_B_STORAGE, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_PREFIX_A, image, 1, stage, &prefixSampler_},
+      {gpu::TYN_PF_BINDING_PREFIX_B, image, 1, stage, &prefixSampler_},
+      {gpu::TYN_PF_BINDING_PREFIX_A_STORAGE, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_PREFIX_B_STORAGE, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_FIXUP_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_DEPTH_BOUNDS_TEXELS, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_DEPTH_BOUNDS_PREFIX, storage, 1, stage, nullptr},
+      {gpu::TYN_PF_BINDING_TEXEL_DEPTHS, storage, 1, stage, nullptr},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
@@ -374,8 +392,8 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   std::uint32_t sets = 1;
   std::string extinctionNote;
   if (!extinction.perChannel) {
-    k.set_extinction = glm::vec4(static_cast<float>(extinction.sigma));
-    k.channel_set = glm::uvec4(0u);
+    k.set_extinction = glm::vec3(static_cast<float>(extinction.sigma));
+    k.channel_set = glm::uvec3(0u);
     extinctionNote = extinction.distinctChannels == 1
                          ? "grey extinction"
                          : "one grey extinction for the prefix weights (visibility error <= " +
@@ -410,18 +428,28 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, co
   const std::uint32_t mapSize = frame.shadowMaps[0].depth.extent.width;
   k.nonlinear = prefiltered::toGpu(rect);
   k.projective = prefiltered::toGpu(proj);
-  k.map = glm::uvec4(settings.columns, settings.rows, projective ? 1u : 0u, !projective && rect.fullCircle ? 1u : 0u);
-  k.options = glm::uvec4(settings.filteredResampling ? 1u : 0u, static_cast<std::uint32_t>(settings.spacing), sets, mapSize);
+  k.map_columns = settings.columns;
+  k.map_rows = settings.rows;
+  k.projective_map = projective ? 1u : 0u;
+  k.rows_wrap = !projective && rect.fullCircle ? 1u : 0u;
+  k.filtered_resampling = settings.filteredResampling ? 1u : 0u;
+  k.spacing = static_cast<std::uint32_t>(settings.spacing);
+  k.prefix_sum_sets = sets;
+  k.host_map_size = mapSize;
   const bool segmented = settings.segmentedReconstruction && settings.rayWeightTaps > 1;
   const bool trimmed = segmented && settings.depthBounds && settings.trimmedSegments;
   const std::uint32_t walk = trimmed ? settings.texelWalkSteps : 0u;
   if (walk > 0 && !texelDepthsSupported_) {
     return failure(Status::UnsupportedFeature, "prefiltered.texelWalkSteps: the device cannot store R16G16B16A16_UNORM");
   }
-  k.fixup = glm::uvec4(settings.epipoleBlockPixels, settings.rayWeightTaps, segmented ? 1u : 0u, trimmed ? 1u : 0u);
-  k.bounds = glm::vec4(settings.adaptiveOverestimation ? -1.0f : settings.overestimation,
-                       settings.depthBounds ? 1.0f : 0.0f, 0.0f, 0.0f);
-  k.walks = glm::uvec4(settings.shortRayColumns, walk, 0u, 0u);
+  k.epipole_block_pixels = settings.epipoleBlockPixels;
+  k.ray_weight_taps = settings.rayWeightTaps;
+  k.segmented = segmented ? 1u : 0u;
+  k.trimmed = trimmed ? 1u : 0u;
+  k.overestimation = settings.adaptiveOverestimation ? -1.0f : settings.overestimation;
+  k.depth_bounds = settings.depthBounds ? 1u : 0u;
+  k.short_ray_columns = settings.shortRayColumns;
+  k.texel_walk_steps = walk;
 
   const MapKey key{basis, settings.columns, settings.rows, sets, settings.filteredResampling ? mapSize : 1u,
                    settings.depthBounds, walk > 0};
@@ -486,27 +514,27 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   };
   const VkDescriptorType image = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   const VkDescriptorType storage = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-  write(0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &frameConstants;
-  write(1, image, 1).pImageInfo = &depth;
-  write(2, image, kMaxShadowMaps).pImageInfo = shadow.data();
-  write(3, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &constants;
-  write(4, storage, 1).pImageInfo = &scattering;
+  write(gpu::TYN_PF_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &frameConstants;
+  write(gpu::TYN_PF_BINDING_DEPTH, image, 1).pImageInfo = &depth;
+  write(gpu::TYN_PF_BINDING_SHADOW_MAPS, image, kMaxShadowMaps).pImageInfo = shadow.data();
+  write(gpu::TYN_PF_BINDING_CONSTANTS, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1).pBufferInfo = &constants;
+  write(gpu::TYN_PF_BINDING_OUT_SCATTERING, storage, 1).pImageInfo = &scattering;
   const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
-  write(5, image, 1).pImageInfo = &lightColor;
-  write(6, image, 1).pImageInfo = &moments;
-  write(7, storage, 1).pImageInfo = &moments;
-  write(8, image, 1).pImageInfo = &rectA;
-  write(9, image, 1).pImageInfo = &rectB;
-  write(10, storage, 1).pImageInfo = &rectA;
-  write(11, storage, 1).pImageInfo = &rectB;
-  write(12, image, 1).pImageInfo = &prefixA;
-  write(13, image, 1).pImageInfo = &prefixB;
-  write(14, storage, 1).pImageInfo = &prefixA;
-  write(15, storage, 1).pImageInfo = &prefixB;
-  write(16, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
-  write(17, storage, 1).pImageInfo = &boundsTexels;
-  write(18, storage, 1).pImageInfo = &boundsPrefix;
-  write(19, storage, 1).pImageInfo = &texelDepths;
+  write(gpu::TYN_PF_BINDING_LIGHT_COLOR, image, 1).pImageInfo = &lightColor;
+  write(gpu::TYN_PF_BINDING_MOMENT_MAP, image, 1).pImageInfo = &moments;
+  write(gpu::TYN_PF_BINDING_MOMENT_MAP_STORAGE, storage, 1).pImageInfo = &moments;
+  write(gpu::TYN_PF_BINDING_RECTIFIED_A, image, 1).pImageInfo = &rectA;
+  write(gpu::TYN_PF_BINDING_RECTIFIED_B, image, 1).pImageInfo = &rectB;
+  write(gpu::TYN_PF_BINDING_RECTIFIED_A_STORAGE, storage, 1).pImageInfo = &rectA;
+  write(gpu::TYN_PF_BINDING_RECTIFIED_B_STORAGE, storage, 1).pImageInfo = &rectB;
+  write(gpu::TYN_PF_BINDING_PREFIX_A, image, 1).pImageInfo = &prefixA;
+  write(gpu::TYN_PF_BINDING_PREFIX_B, image, 1).pImageInfo = &prefixB;
+  write(gpu::TYN_PF_BINDING_PREFIX_A_STORAGE, storage, 1).pImageInfo = &prefixA;
+  write(gpu::TYN_PF_BINDING_PREFIX_B_STORAGE, storage, 1).pImageInfo = &prefixB;
+  write(gpu::TYN_PF_BINDING_FIXUP_ARGS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1).pBufferInfo = &args;
+  write(gpu::TYN_PF_BINDING_DEPTH_BOUNDS_TEXELS, storage, 1).pImageInfo = &boundsTexels;
+  write(gpu::TYN_PF_BINDING_DEPTH_BOUNDS_PREFIX, storage, 1).pImageInfo = &boundsPrefix;
+  write(gpu::TYN_PF_BINDING_TEXEL_DEPTHS, storage, 1).pImageInfo = &texelDepths;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
 
 #include "camera.h"
@@ -232,15 +233,28 @@ NonLinearRectification computeNonLinearRectification(const ViewFrustum& frustum,
   return rect;
 }
 
+// The rectification parameters' std140 offsets (shaders/prefiltered/rectification.h).
+static_assert(offsetof(gpu::NonLinearRectificationParams, r_max) == 12);
+static_assert(offsetof(gpu::NonLinearRectificationParams, phi_extent) == 28);
+static_assert(offsetof(gpu::NonLinearRectificationParams, theta_range) == 64);
+static_assert(offsetof(gpu::NonLinearRectificationParams, theta_range_guarded) == 72);
+static_assert(offsetof(gpu::NonLinearRectificationParams, side_planes) == 80);
+static_assert(sizeof(gpu::NonLinearRectificationParams) == 144);
+static_assert(offsetof(gpu::ProjectiveRectificationParams, x_near) == 64);
+static_assert(offsetof(gpu::ProjectiveRectificationParams, zeta_hi) == 92);
+static_assert(sizeof(gpu::ProjectiveRectificationParams) == 96);
+
 gpu::NonLinearRectificationParams toGpu(const NonLinearRectification& rect) {
   gpu::NonLinearRectificationParams p{};
-  p.origin = f4(rect.origin, rect.rMax);
-  p.axis_x = f4(rect.axisX, rect.phiExtent);
-  p.axis_y = f4(rect.axisY, 0.0);
-  p.axis_z = f4(rect.axisZ, 0.0);
-  p.theta_bounds = gpu::vec4(static_cast<float>(rect.thetaMin), static_cast<float>(rect.thetaMax),
-                             static_cast<float>(rect.thetaMinGuarded),
-                             static_cast<float>(rect.thetaMaxGuarded));
+  p.origin = gpu::vec3(rect.origin);
+  p.r_max = static_cast<float>(rect.rMax);
+  p.axis_x = gpu::vec3(rect.axisX);
+  p.phi_extent = static_cast<float>(rect.phiExtent);
+  p.axis_y = gpu::vec3(rect.axisY);
+  p.axis_z = gpu::vec3(rect.axisZ);
+  p.theta_range = gpu::vec2(static_cast<float>(rect.thetaMin), static_cast<float>(rect.thetaMax));
+  p.theta_range_guarded =
+      gpu::vec2(static_cast<float>(rect.thetaMinGuarded), static_cast<float>(rect.thetaMaxGuarded));
   for (int i = 0; i < 4; ++i) p.side_planes[i] = f4(rect.sidePlanes[i], 0.0);
   return p;
 }
@@ -315,10 +329,14 @@ double projectiveTexelStretch(const ProjectiveRectification& proj, const NonLine
 gpu::ProjectiveRectificationParams toGpu(const ProjectiveRectification& proj) {
   gpu::ProjectiveRectificationParams p{};
   p.world_to_clip = gpu::mat4(proj.worldToClip);
-  p.x_eta = gpu::vec4(static_cast<float>(proj.xNear), static_cast<float>(proj.xFar),
-                      static_cast<float>(proj.etaLo), static_cast<float>(proj.etaHi));
-  p.zeta = gpu::vec4(static_cast<float>(proj.zetaLoGuarded), static_cast<float>(proj.zetaHiGuarded),
-                     static_cast<float>(proj.zetaLo), static_cast<float>(proj.zetaHi));
+  p.x_near = static_cast<float>(proj.xNear);
+  p.x_far = static_cast<float>(proj.xFar);
+  p.eta_lo = static_cast<float>(proj.etaLo);
+  p.eta_hi = static_cast<float>(proj.etaHi);
+  p.zeta_lo_guarded = static_cast<float>(proj.zetaLoGuarded);
+  p.zeta_hi_guarded = static_cast<float>(proj.zetaHiGuarded);
+  p.zeta_lo = static_cast<float>(proj.zetaLo);
+  p.zeta_hi = static_cast<float>(proj.zetaHi);
   return p;
 }
 

@@ -7,12 +7,13 @@ namespace tyndall {
 
 Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
-  const std::array<VkDescriptorSetLayoutBinding, 5> bindings{{
-      {0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
-      {2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, VK_SHADER_STAGE_COMPUTE_BIT, samplers.data()},
-      {3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr},
-      {4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_COMPUTE_BIT, &linear},
+  const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  const std::array<VkDescriptorSetLayoutBinding, gpu::TYN_REFERENCE_BINDING_COUNT> bindings{{
+      {gpu::TYN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, stage, nullptr},
+      {gpu::TYN_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, samplers.data()},
+      {gpu::TYN_BINDING_SHADOW_MAPS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps, stage, samplers.data()},
+      {gpu::TYN_REFERENCE_BINDING_OUT_SCATTERING, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, stage, nullptr},
+      {gpu::TYN_REFERENCE_BINDING_LIGHT_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, stage, &linear},
   }};
   if (Outcome o = createLayouts(gpu, bindings, nullptr, setLayout_, pipelineLayout_); !o) return o;
 
@@ -59,12 +60,12 @@ void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
   const VkDescriptorImageInfo scattering{VK_NULL_HANDLE, b.scattering, VK_IMAGE_LAYOUT_GENERAL};
   const VkDescriptorImageInfo lightColor{VK_NULL_HANDLE, b.lightColor, b.lightColorLayout};
 
-  std::array<VkWriteDescriptorSet, 5> writes{
-      descriptorWrite(set, 0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
-      descriptorWrite(set, 1, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
-      descriptorWrite(set, 2, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps),
-      descriptorWrite(set, 3, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
-      descriptorWrite(set, 4, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)};
+  std::array<VkWriteDescriptorSet, gpu::TYN_REFERENCE_BINDING_COUNT> writes{
+      descriptorWrite(set, gpu::TYN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
+      descriptorWrite(set, gpu::TYN_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER),
+      descriptorWrite(set, gpu::TYN_BINDING_SHADOW_MAPS, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, kMaxShadowMaps),
+      descriptorWrite(set, gpu::TYN_REFERENCE_BINDING_OUT_SCATTERING, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE),
+      descriptorWrite(set, gpu::TYN_REFERENCE_BINDING_LIGHT_COLOR, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER)};
   writes[0].pBufferInfo = &constants;
   writes[1].pImageInfo = &depth;
   writes[2].pImageInfo = shadow.data();

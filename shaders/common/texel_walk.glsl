@@ -1,12 +1,26 @@
-// The brute-force in-scattering integral (yusov2013's "starting point"): the view ray is walked
-// through the shadow map texel by texel. Within one texel the stored depth is constant and the
-// ray's shadow-clip coordinates are linear in t (homogeneously), so the lit part of each texel
-// segment is found exactly by solving one linear inequality. Lit parts are integrated in closed
-// form for a directional light and by Gauss–Legendre quadrature for spot and point lights.
+// The texel walk, the brute-force in-scattering integral (yusov2013's "starting point") that the
+// Reference runs per pixel and the other techniques run where they fall back to brute force: the
+// view ray is walked through the shadow map texel by texel. Within one texel the stored depth is
+// constant and the ray's shadow-clip coordinates are linear in t (homogeneously), so the lit part
+// of each texel segment is found exactly by solving one linear inequality. Lit parts are integrated
+// in closed form for a directional light and by Gauss–Legendre quadrature for spot and point lights.
 // Needs `frame` (FrameConstants), `shadow_maps[]` (sampler2D array) and `light_color` (sampler2D)
 // in scope.
-#ifndef TYNDALL_REFERENCE_MARCH_GLSL
-#define TYNDALL_REFERENCE_MARCH_GLSL
+//
+// Hooks. A technique changes the walk by defining any of these before including this file, and then
+// defines the functions that go with it (declared below, so the walk can call them):
+//   TYN_WALK_LIT_SECTIONS   vec3 tyn_point_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b)
+//                           integrates a point light's merged lit section [a, b] in one call.
+//   TYN_WALK_SHADOW_BLOCKS  bool tyn_shadow_blocks_built() says whether this frame has block ranges;
+//                           vec3 tyn_walk_shadow_blocks(map, origin, dir, t0, t1, directional) walks a
+//                           map block by block where they are.
+//   TYN_WALK_IN_STEPS       uint tyn_walk_steps() is the number of steps per map (0: the texel walk);
+//                           vec3 tyn_step_shadow_map(map, origin, dir, t0, t1, part, parts, directional)
+//                           marches in that many steps instead.
+// With none defined the walk is the Reference's. The epipolar fix-up and march define them
+// (epipolar/fixup.comp, epipolar/march.comp).
+#ifndef TYNDALL_TEXEL_WALK_GLSL
+#define TYNDALL_TEXEL_WALK_GLSL
 
 #include "common/light_color.glsl"
 #include "common/medium.glsl"
@@ -19,11 +33,8 @@ const float TYN_INFINITY = 3.0e38;
 // (h0 + t h1) / (h0w + t h1w) = edge, in front of the map's projection (w > 0). In a perspective
 // map the projected coordinate approaches the ray's vanishing point as t grows and never passes
 // it: an edge beyond it solves the equation only on the other branch of the hyperbola, behind the
-// light's plane (w < 0), which is no crossing (infinite, as along an axis without motion). Taken
-// as one, it was a crossing already passed: the walk stepped across texel after texel at no
-// length until it left the map and dropped the rest of the stretch: in point-lamp's view, a ray
-// running along a row towards its vanishing point lost a whole 90° map, its L_in 24% low
-// (LocalLights.ReferenceMatchesQuadrature/point_lamp_view; docs/REFERENCE.md).
+// light's plane (w < 0), which is no crossing (infinite, as along an axis without motion). Taken as
+// one, it would be a crossing already passed, and the walk would skip the rest of the map.
 float tyn_edge_crossing(float h0, float h1, float h0w, float h1w, float edge) {
   float denom = h1 - edge * h1w;
   if (denom == 0.0) return TYN_INFINITY;
@@ -108,26 +119,18 @@ vec2 tyn_texel_lit_part(TynShadowRay r, float z_texel, float t, float t_next) {
 }
 
 #ifdef TYN_WALK_IN_STEPS
-// The epipolar fix-up's stepped march where EpipolarSettings::fixupSteps asks for one
-// (epipolar/fixup_steps.glsl; the including shader defines both): this part's share of the steps
-// that cut [t0, t1].
+// Hook: a march in tyn_walk_steps() steps per map instead of the texel walk (0: the texel walk).
 uint tyn_walk_steps();
 vec3 tyn_step_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, uint part, uint parts, bool directional);
 #endif
 
 #ifdef TYN_WALK_LIT_SECTIONS
-// With TYN_WALK_LIT_SECTIONS defined (the epipolar march and fix-up), a point light's lit parts
-// that follow on from one another are merged into lit sections, and each section is integrated in
-// one call from yusov2013's semi-analytic table (epipolar/scattering_lut.h, which the including
-// shader defines this in, with the table bound) instead of by quadrature per texel part: a
-// section across a hundred lit texels costs two table lookups instead of a hundred quadratures
-// (a point light's samples have no single slice line to march along, so they all take this walk).
-// Not with a light-colour texture, whose colour varies along a section (the quadrature takes it
-// at every node). Not for a spot light either: only its fix-up walks, and there the sections'
-// penumbra quadrature made lavapipe's fix-up slower (spot-lamp 1920×1080, Balanced, one run of 4
-// frames each: 576 against 300 ms), since a CPU driver runs a branch that any lane takes for all
-// of them. The Reference keeps the per-part quadrature: it is the brute force the table is
-// checked against.
+// Hook: a point light's lit parts that follow on from one another are merged into lit sections,
+// each integrated in one call (the epipolar passes use yusov2013's semi-analytic table: two lookups
+// instead of a quadrature per lit texel). Not with a light-colour texture, whose colour varies
+// along a section (the quadrature takes it at every node), nor for a spot light, whose penumbra
+// quadrature per section costs a CPU driver more than it saves. The Reference keeps the per-part
+// quadrature: it is the brute force the table is checked against.
 vec3 tyn_point_light_lut_segment(vec3 origin, vec3 view_dir, float a, float b);
 #endif
 
@@ -149,7 +152,7 @@ bool tyn_walk_merges_sections(bool directional) {
 void tyn_walk_add_lit_part(inout vec3 sum, inout vec2 section, bool directional, bool sections,
                            TynLocalLightRay local_ray, vec3 origin, vec3 dir, float a, float b) {
   if (directional) {
-    sum += tyn_light_color_at(origin + dir * (0.5 * (a + b))) * tyn_transmittance_integral(a, b, frame.extinction.rgb);
+    sum += tyn_light_color_at(origin + dir * (0.5 * (a + b))) * tyn_transmittance_integral(a, b, frame.extinction);
   }
 #ifdef TYN_WALK_LIT_SECTIONS
   else if (sections) {
@@ -173,9 +176,8 @@ void tyn_walk_close_section(inout vec3 sum, vec2 section, bool sections, vec3 or
 }
 
 #ifdef TYN_WALK_SHADOW_BLOCKS
-// The epipolar passes' walk of a directional light's map (the fix-up) or of a point light's six
-// (the march and the fix-up) where the frame built their blocks (epipolar/block_walk.glsl; the
-// including shader defines both).
+// Hook: a walk that crosses a block of texels in one step where the block's depth range decides
+// them all, used where tyn_shadow_blocks_built() says the frame has the blocks.
 vec3 tyn_walk_shadow_blocks(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional);
 bool tyn_shadow_blocks_built();
 #endif
@@ -187,7 +189,7 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   vec2 section = vec2(t0);  // the lit section being merged (tyn_walk_add_lit_part)
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
   TynLocalLightRay local_ray = tyn_local_light_ray(origin, dir);
-  int size = int(frame.counts.w);
+  int size = int(frame.shadow_map_size);
   float n = float(size);
 
   ivec2 texel;
@@ -197,9 +199,8 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
   vec3 sum = vec3(0.0);
   float t = t0;
   // Every step crosses one texel edge, so 2·size steps cross the whole map; the margin covers
-  // rounding at the start. Each step also spends lavapipe's loop budget, shared by every loop of
-  // the invocation (docs/REFERENCE.md "Loop budget on lavapipe"): a loop inside the step, even one
-  // that only a branch not taken holds, costs at least one iteration per step.
+  // rounding at the start. No loop inside the step: on lavapipe every iteration of every loop of
+  // an invocation counts against one budget (docs/REFERENCE.md "Loop budget on lavapipe").
   int max_steps = 2 * size + 8;
   for (int i = 0; i < max_steps && t < t1; ++i) {
     vec2 crossing = tyn_edge_crossings(r, step_dir, texel + max(step_dir, ivec2(0)), n);
@@ -227,7 +228,7 @@ float tyn_part_end(float t0, float t1, uint part, uint parts) {
 
 // Part `part` of `parts` of L_in along [0, s] of the view ray (DESIGN.md "Radiometry"): the
 // stretch of the ray inside each shadow map is cut into `parts` equal lengths and this walks one of
-// them, so that several threads can share one ray (split_march.glsl); the parts sum to the whole.
+// them, so that several threads can share one ray (common/split_march.glsl); the parts sum to the whole.
 // A directional light's stretches outside the map (lit, closed form) belong to part 0.
 vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part, uint parts) {
   if (TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL) {
@@ -237,7 +238,7 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
     vec3 lit = vec3(0.0);
     TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
     if (tyn_clip_to_shadow_map(r, t_in, t_out)) {
-      if (part == 0u) lit = tyn_transmittance_integral(0.0, t_in, frame.extinction.rgb);
+      if (part == 0u) lit = tyn_transmittance_integral(0.0, t_in, frame.extinction);
       float begin = tyn_part_begin(t_in, t_out, part, parts);
       float end = tyn_part_end(t_in, t_out, part, parts);
 #ifdef TYN_WALK_IN_STEPS
@@ -253,18 +254,18 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
       {
         lit += tyn_walk_shadow_map(0u, origin, dir, begin, end, true);
       }
-      if (part == 0u) lit += tyn_transmittance_integral(t_out, s, frame.extinction.rgb);
+      if (part == 0u) lit += tyn_transmittance_integral(t_out, s, frame.extinction);
     } else if (part == 0u) {
-      lit = tyn_transmittance_integral(0.0, s, frame.extinction.rgb);
+      lit = tyn_transmittance_integral(0.0, s, frame.extinction);
     }
-    float cos_theta = dot(dir, -frame.light_direction.xyz);
-    return frame.light_radiance.rgb * tyn_phase_weighted_scattering(cos_theta) * lit;
+    float cos_theta = dot(dir, -frame.light_direction);
+    return frame.light_radiance * tyn_phase_weighted_scattering(cos_theta) * lit;
   }
 
   // Spot: one frustum around the cone; point: six 90° frusta that tile all directions. Outside
   // the frusta the light does not reach.
   vec3 sum = vec3(0.0);
-  for (uint map = 0u; map < frame.counts.z; ++map) {
+  for (uint map = 0u; map < frame.shadow_map_count; ++map) {
     float t_in = 0.0;
     float t_out = s;
     if (tyn_clip_to_shadow_map(tyn_shadow_ray(map, origin, dir), t_in, t_out)) {

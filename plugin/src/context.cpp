@@ -8,19 +8,15 @@
 
 #include "auto_profile.h"
 #include "composite/composite_pass.h"
-#include "epipolar/epipolar_geometry.h"
 #include "epipolar/epipolar_technique.h"
-#include "epipolar/min_max_tree.h"
-#include "epipolar/slice_arc.h"
 #include "frame_setup.h"
 #include "gpu.h"
 #include "prefiltered/prefiltered_technique.h"
 #include "profiles.h"
-#include "reference/reference_pass.h"
+#include "reference/reference_technique.h"
 #include "technique_selection.h"
 #include "timing.h"
 
-#include <glm/gtc/type_ptr.hpp>
 
 namespace tyndall {
 
@@ -78,80 +74,6 @@ constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // docs/REFERENCE.md "Loop budget on lavapipe"); the frame's note says so above it on a CPU driver.
 constexpr std::uint32_t kCpuDriverPointLightMapLimit = 4096;
 
-// Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
-// the shaders would run (shaders/epipolar/epipolar_geometry.h).
-// `arc` is the frame's slice arc (slice_arc.h), found from the epipole computed here.
-gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent,
-                                         SliceArc& arc) {
-  const glm::mat4 viewProj = glm::make_mat4(frame.camera.projection.data()) * glm::make_mat4(frame.camera.view.data());
-  const LightDesc& light = frame.light;
-  const glm::vec4 lightClip =
-      light.type == LightType::Directional
-          ? gpu::tyn_epipole_clip_directional(viewProj, glm::normalize(glm::make_vec3(light.direction.data())))
-          : gpu::tyn_epipole_clip_local(viewProj, glm::make_vec3(light.position.data()));
-  gpu::EpipolarConstants k{};
-  k.epipole = gpu::tyn_epipole(lightClip);
-  arc = sliceArc(frame.camera, light, k.epipole, glm::vec2(float(extent.width), float(extent.height)));
-  k.arc_start = arc.arc.x;
-  k.arc_length = arc.arc.y;
-  k.fixup_steps = settings.fixupSteps;
-  k.slice_count = settings.slices;
-  k.samples_per_slice = settings.samplesPerSlice;
-  k.improved_placement = settings.improvedSamplePlacement ? 1u : 0u;
-  k.initial_sample_step = settings.initialSampleStep;
-  k.depth_break_threshold = settings.refinementThreshold;
-  k.intensity_refinement_threshold = settings.intensityRefinementThreshold;
-  k.slice_contrast_threshold = settings.sliceContrastThreshold;
-  k.epipole_density = settings.epipoleDensity;
-  k.bilateral_depth_threshold = settings.bilateralDepthThreshold;
-  k.fixup_weight_threshold = settings.fixupWeightThreshold;
-  k.epipole_block_radius = epipoleBlockRadius(settings, extent.height);
-  // Directional and spot lights march along each slice's line in shadow map 0; a point light's
-  // rays cross six maps, so its samples take the Reference's walk. The tree's level 0 lives in
-  // the build pass's shared memory, which bounds L (maps larger than 4096² march every cell).
-  if (light.type != LightType::Point) {
-    const int samples = gpu::tyn_min_max_sample_count(static_cast<int>(frame.shadowMaps[0].depth.extent.width));
-    const bool tree = settings.minMaxTree && samples <= static_cast<int>(gpu::TYN_EPIPOLAR_TREE_MAX_SAMPLES);
-    const int topLevel = std::min(gpu::tyn_min_max_level_for_max_step(static_cast<int>(settings.maxTreeStep)),
-                                  gpu::tyn_min_max_highest_level(samples));
-    // With a light-colour texture lit parts are integrated in chunks of coloredStep cells, each
-    // uncoloured times its mean colour (min_max_tree.h, tyn_min_max_add_colored; light_color_sums.h).
-    const std::uint32_t coloredChunk = frame.lightColor.empty() ? 0u : settings.coloredStep;
-    k.tree_samples = static_cast<std::uint32_t>(samples);
-    k.tree_top_level = static_cast<std::uint32_t>(topLevel);
-    k.tree_enabled = tree ? 1u : 0u;
-    k.colored_chunk = coloredChunk;
-  }
-  return k;
-}
-
-// The epipolar part of the note: how it marched, and where the slices went (slice_arc.h).
-std::string epipolarNote(const EpipolarStats& s) {
-  std::string note;
-  switch (s.march) {
-    case EpipolarMarch::MinMaxTree: break;
-    case EpipolarMarch::CellsTreeOff: note = "; min/max tree off"; break;
-    case EpipolarMarch::CellsMapTooLarge: note = "; shadow map above 4096^2: march without the min/max tree"; break;
-    case EpipolarMarch::PointLightBlockWalk:
-      note = "; point light: samples marched with the texel walk across blocks of " +
-             std::to_string(gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK) + "^2 texels (no single slice line)";
-      break;
-  }
-  if (s.sliceBorderFraction >= 1.0f) return note;
-  char line[120];
-  std::snprintf(line, sizeof(line), "; slices over %.1f%% of the border (%s%s%s)", 100.0 * s.sliceBorderFraction,
-                s.slicesFitSpotCone ? "spot cone" : "", s.slicesFitSpotCone && s.slicesFitOffScreenEpipole ? ", " : "",
-                s.slicesFitOffScreenEpipole ? "epipole off screen" : "");
-  return note + line;
-}
-
-// How the epipolar technique marches this frame, for the stats.
-EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light) {
-  if (light == LightType::Point) return EpipolarMarch::PointLightBlockWalk;
-  if (k.tree_enabled != 0) return EpipolarMarch::MinMaxTree;
-  return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
-}
-
 }  // namespace
 
 struct Context::Impl {
@@ -165,9 +87,20 @@ struct Context::Impl {
   bool whiteCleared = false;
   std::vector<MappedBuffer> constants;  // one per frame slot
   GpuTimer timer;
-  ReferencePass reference;
+  ReferenceTechnique reference;
   EpipolarTechnique epipolar;
   PrefilteredTechnique prefiltered;
+  // In order of creation.
+  std::array<ScatteringTechnique*, 3> techniques{&reference, &epipolar, &prefiltered};
+  ScatteringTechnique* techniqueFor(Technique technique) {
+    switch (technique) {
+      case Technique::Reference: return &reference;
+      case Technique::Epipolar: return &epipolar;
+      case Technique::Prefiltered: return &prefiltered;
+      case Technique::None: break;
+    }
+    return nullptr;
+  }
   CompositePass composite;
   AutoProfile autoProfile;
   std::uint64_t lastTimedFrame = ~0ull;  // the latest frame whose time went to autoProfile
@@ -192,10 +125,9 @@ struct Context::Impl {
   void destroySizeDependent();
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
-  void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
-                        const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable);
-  void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, Technique technique,
-                       const gpu::EpipolarConstants& epipolarConstants, bool buildScatteringTable,
+  void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
+                        ScatteringTechnique* technique);
+  void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, ScatteringTechnique& technique,
                        VkImageLayout depthLayout);
   void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets);
 };
@@ -217,13 +149,14 @@ Outcome Context::Impl::createSizeIndependent() {
   }
   if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
   stats.timestampsSupported = timer.supported();
-  if (Outcome o = reference.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
-  const std::uint32_t marchParts = tuning.marchThreadsPerSample != 0 ? tuning.marchThreadsPerSample
-                                   : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
-                                       ? 1u
-                                       : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
-  if (Outcome o = epipolar.create(gpu, nearest, linear, desc.maxFramesInFlight, marchParts); !o) return o;
-  if (Outcome o = prefiltered.create(gpu, nearest, linear, desc.maxFramesInFlight); !o) return o;
+  TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
+  resources.marchThreadsPerSample = tuning.marchThreadsPerSample != 0 ? tuning.marchThreadsPerSample
+                                    : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
+                                        ? 1u
+                                        : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
+  for (ScatteringTechnique* technique : techniques) {
+    if (Outcome o = technique->create(gpu, resources); !o) return o;
+  }
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
   if (tuning.pipelineCreation == PipelineCreation::AtCreate) {
     if (Outcome o = warmUp(); !o) return o;
@@ -238,23 +171,17 @@ Outcome Context::Impl::createSizeIndependent() {
 }
 
 Outcome Context::Impl::warmUp() {
-  if (Outcome o = reference.createPipelines(gpu); !o) return o;
-  if (Outcome o = epipolar.createPipelines(gpu); !o) return o;
-  if (!prefiltered.pipelinesReady()) return prefiltered.createPipelines(gpu);
+  for (ScatteringTechnique* technique : techniques) {
+    if (Outcome o = technique->createPipelines(gpu); !o) return o;
+  }
   return {};
 }
 
 Outcome Context::Impl::ensurePipelines(Technique technique, const FrameDesc& frame) {
+  ScatteringTechnique* t = techniqueFor(technique);
+  if (t == nullptr) return {};
   bool compiled = false;
-  Outcome outcome;
-  if (technique == Technique::Reference) {
-    outcome = reference.ensurePipeline(gpu, frame.light.type, compiled);
-  } else if (technique == Technique::Epipolar) {
-    outcome = epipolar.ensurePipelines(gpu, frame.light.type, !frame.lightColor.empty(), compiled);
-  } else if (technique == Technique::Prefiltered && !prefiltered.pipelinesReady()) {
-    compiled = true;
-    outcome = prefiltered.createPipelines(gpu);
-  }
+  const Outcome outcome = t->ensurePipelines(gpu, frame, compiled);
   if (compiled) {
     report(Severity::Warning, std::string("pipelines of the ") + to_string(technique) +
                                   " technique compiled during record (PipelineCreation::OnFirstUse; call warmUp "
@@ -268,7 +195,7 @@ Outcome Context::Impl::createSizeDependent() {
 }
 
 void Context::Impl::destroySizeDependent() {
-  epipolar.destroySizeDependent(gpu);
+  for (ScatteringTechnique* technique : techniques) technique->destroySizeDependent(gpu);
   destroyImage(gpu, debugImage);
   destroyImage(gpu, scattering);
 }
@@ -278,9 +205,7 @@ void Context::Impl::destroyAll() {
   if (gpu.device == VK_NULL_HANDLE) return;
   destroySizeDependent();
   composite.destroy(gpu);
-  prefiltered.destroy(gpu);
-  epipolar.destroy(gpu);
-  reference.destroy(gpu);
+  for (auto it = techniques.rbegin(); it != techniques.rend(); ++it) (*it)->destroy(gpu);
   timer.destroy(gpu);
   for (MappedBuffer& buffer : constants) destroyBuffer(gpu, buffer);
   constants.clear();
@@ -430,7 +355,6 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   } else if (selection.change != TechniqueChange::None) {
     note += std::string("; ") + techniqueChangeNote(selection.change);
   }
-  const EpipolarSettings& epipolarSettings = frame.epipolar != nullptr ? *frame.epipolar : choice.epipolar;
   // lavapipe ends every loop of a shader invocation once its loops together have run 65,535
   // iterations (docs/REFERENCE.md "Loop budget on lavapipe"). A point light's texel walk takes about
   // two per texel step and a ray passing the light crosses up to six times the map's side: within
@@ -445,7 +369,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
             "^2 can exceed lavapipe's 65,535 loop iterations per invocation and come out too dark";
   }
   if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);
-  const bool drawsDebugView = frame.debugView != DebugView::None && technique == Technique::Epipolar;
+  ScatteringTechnique* const runs = techniqueFor(technique);  // null when nothing scatters
+  const bool drawsDebugView = frame.debugView != DebugView::None && runs != nullptr && runs->drawsDebugViews();
   if (frame.debugView != DebugView::None && !drawsDebugView) note += "; debug view: drawn by the epipolar technique only";
   if (drawsDebugView && debugImage.image == VK_NULL_HANDLE) {
     if (Outcome o = createImage(gpu, kTargetFormat, extent, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -455,45 +380,11 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     report(Severity::Info, "debug view image allocated");
   }
-  gpu::EpipolarConstants epipolarK{};
-  bool buildScatteringTable = false;
-  std::optional<EpipolarStats> epipolarStats;
-  if (technique == Technique::Epipolar) {
-    SliceArc arc;
-    epipolarK = epipolarConstants(frame, epipolarSettings, extent, arc);
-    epipolarStats = EpipolarStats{epipolarSettings.slices, epipolarSettings.samplesPerSlice,
-                                  epipolarMarch(epipolarK, epipolarSettings, frame.light.type), arc.fraction, arc.cone, arc.screen};
-    note += epipolarNote(*epipolarStats);
-    const std::uint32_t treeSamples = epipolarK.tree_enabled != 0 ? epipolarK.tree_samples : 0;
-    // The light-colour texture's sums along the slices' lines, for the march along them.
-    const std::uint32_t colorSamples = epipolarK.colored_chunk != 0 ? epipolarK.tree_samples : 0;
-    // The blocks the walks cross (block_walk.glsl): a point light's march walks every sample; a
-    // directional light's fix-up only where it walks texel by texel (not in steps).
-    const bool walked = frame.light.type == LightType::Point || epipolarSettings.fixupSteps == 0;
-    const VkExtent2D shadowBlocks =
-        !frame.shadowMaps.empty() && walked
-            ? shadowBlockExtent(frame.light.type, frame.shadowMaps[0].depth.extent.width,
-                                static_cast<std::uint32_t>(frame.shadowMaps.size()))
-            : VkExtent2D{0, 0};
-    // Blocks along a map's side: fixup_args.comp sizes a directional light's blocks pass by it.
-    epipolarK.shadow_block_side = shadowBlocks.width;
-    if (Outcome o = epipolar.prepare(gpu, epipolarSettings, treeSamples, colorSamples, shadowBlocks, extent,
-                                     stats.frameIndex, desc.maxFramesInFlight);
-        !o) {
-      return fail(o);
-    }
-    if (Outcome o = epipolar.prepareScatteringTable(gpu, frame, buildScatteringTable); !o) return fail(o);
-  }
-
-  std::optional<PrefilteredStats> prefilteredStats;
-  if (technique == Technique::Prefiltered) {
-    const PrefilteredSettings& settings = frame.prefiltered != nullptr ? *frame.prefiltered : choice.prefiltered;
-    prefilteredStats.emplace();
-    if (Outcome o = prefiltered.prepare(gpu, frame, settings, extent, slot, stats.frameIndex,
-                                        desc.maxFramesInFlight, *prefilteredStats, note);
-        !o) {
-      return fail(o);
-    }
+  TechniqueReport techniqueReport;
+  if (runs != nullptr) {
+    const FrameInputs inputs{frame, choice, extent, slot, stats.frameIndex, desc.maxFramesInFlight};
+    if (Outcome o = runs->prepare(gpu, inputs, techniqueReport); !o) return fail(o);
+    note += techniqueReport.note;
   }
 
   stats.requestedProfile = frame.profile;
@@ -501,17 +392,14 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   stats.requestedTechnique = requested;
   stats.techniqueSetByFrame = frame.technique != Technique::None;
   stats.techniqueChange = selection.change;
-  stats.epipolar = epipolarStats;
-  stats.prefiltered = prefilteredStats;
+  stats.epipolar = techniqueReport.epipolar;
+  stats.prefiltered = techniqueReport.prefiltered;
   stats.pointLightWalkOverCpuLoopLimit = overLoopLimit;
   stats.debugViewDrawn = drawsDebugView;
   stats.passesRecorded.clear();
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
-  if (EpipolarTechnique::Counts counts; epipolar.takeCounts(slot, counts)) {
-    stats.epipolarCounts = EpipolarCounts{
-        counts.marched, counts.shadowed,
-        static_cast<double>(counts.fixedUp) / (double(extent.width) * extent.height)};
-  }
+  // Counts the slot's previous frame left, whichever technique runs now.
+  for (ScatteringTechnique* t : techniques) t->readBack(slot, extent, stats);
 
   if (!setup.attenuates) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
@@ -528,7 +416,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.composite = CompositePath::Fragment;
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
-    recordScattering(cmd, slot, frame, technique, epipolarK, buildScatteringTable);
+    recordScattering(cmd, slot, frame, runs);
     recordAovs(cmd, slot, frame, true);
     // The host's depth buffer, which recordScattering acquired: read by the technique, the
     // composite and the T AOV's pass.
@@ -555,13 +443,12 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 }
 
 void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                                     Technique technique, const gpu::EpipolarConstants& epipolarConstants,
-                                     bool buildScatteringTable) {
+                                     ScatteringTechnique* technique) {
   const VkImageLayout depthLayout = sampledDepthLayout(frame.depth.layout);
   // The depth buffer stays acquired until the T AOV (Impl::record releases it).
   imageBarrier(gpu, cmd, frame.depth.image, barrierAspect(frame.depth.format), frame.depth.arrayLayer,
                hostBefore(frame.depth), {depthLayout, kDepthReaders, VK_ACCESS_SHADER_READ_BIT});
-  if (technique == Technique::None) {
+  if (technique == nullptr) {
     // Nothing scatters: L_in = 0 without a technique (the previous frame's reads finish first).
     const ImageUse transferWrite{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
                                  VK_ACCESS_TRANSFER_WRITE_BIT};
@@ -577,7 +464,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                  {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
                   VK_ACCESS_SHADER_READ_BIT});
   } else {
-    recordTechnique(cmd, slot, frame, technique, epipolarConstants, buildScatteringTable, depthLayout);
+    recordTechnique(cmd, slot, frame, *technique, depthLayout);
   }
 
   // Composite into the back buffer.
@@ -598,14 +485,13 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
 // The technique's passes into the L_in target, left for the composite's fragment shader to read.
 // The depth buffer is acquired (recordScattering), in `depthLayout`.
 void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                                    Technique technique, const gpu::EpipolarConstants& epipolarConstants,
-                                    bool buildScatteringTable, VkImageLayout depthLayout) {
+                                    ScatteringTechnique& technique, VkImageLayout depthLayout) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
   // Each pass's timestamps are written before its barriers: a CPU driver (lavapipe) takes a
   // timestamp when it next flushes, and a barrier flushes, so the stamps then bracket the work.
-  const bool bruteForce = technique == Technique::Reference;
-  if (bruteForce) timer.beginPass(gpu, cmd, "reference_scattering");
+  const char* singlePass = technique.singlePassName();
+  if (singlePass != nullptr) timer.beginPass(gpu, cmd, singlePass);
   // Tyndall's target: the previous frame's reads must finish before it is overwritten; the old
   // contents are discarded.
   imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0},
@@ -655,22 +541,17 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
     acquireDepth(map, bindings.shadowLayouts[i], compute);
   }
 
-  if (frame.debugView != DebugView::None && !bruteForce) {
+  if (frame.debugView != DebugView::None && technique.drawsDebugViews()) {
     bindings.debug = debugImage.view;
     bindings.debugView = frame.debugView;
     imageBarrier(gpu, cmd, debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                  {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_TRANSFER_BIT, 0},
                  {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
   }
-  if (bruteForce) {
-    reference.record(gpu, cmd, slot, bindings, extent);
+  technique.record(gpu, cmd, RecordTarget{slot, bindings, extent, timer, stats.passesRecorded});
+  if (singlePass != nullptr) {
     timer.endPass(gpu, cmd);
-    stats.passesRecorded.emplace_back("reference_scattering");
-  } else if (technique == Technique::Prefiltered) {
-    prefiltered.record(gpu, cmd, slot, bindings, extent, timer, stats.passesRecorded);
-  } else {
-    epipolar.record(gpu, cmd, slot, bindings, epipolarConstants, frame.light.type, buildScatteringTable, extent, timer,
-                    stats.passesRecorded);
+    stats.passesRecorded.emplace_back(singlePass);
   }
   if (!frame.lightColor.empty()) {
     imageBarrier(gpu, cmd, frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
@@ -688,28 +569,48 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
 // nothing was computed, clears them to L_in = 0 and T = 1. T has no target of its own: once L_in
 // is composited and copied, its target receives T from the composite's own formula, then is copied.
 void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets) {
-  const std::array<const ImageRef*, 2> outputs{&frame.scatteringOutput, &frame.transmittanceOutput};
   if (frame.scatteringOutput.empty() && frame.transmittanceOutput.empty() && frame.debugOutput.empty()) return;
 
   const char* pass = fromTargets ? "aov_output" : "aov_clear";
   timer.beginPass(gpu, cmd, pass);
+  // One host output: acquired for the transfer, filled by `fill` (a blit or a clear), released.
+  auto write = [&](const ImageRef& output, auto&& fill) {
+    const VkImageLayout layout = keepGeneral(output.layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    const ImageUse transferWrite{layout, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
+    imageBarrier(gpu, cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, output.arrayLayer, hostBefore(output),
+                 transferWrite);
+    fill(layout);
+    imageBarrier(gpu, cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, output.arrayLayer, transferWrite,
+                 hostAfter(output));
+  };
+  auto blit = [&](VkImage source, const ImageRef& output, VkImageLayout layout) {
+    VkImageBlit region{};
+    region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
+    region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, output.arrayLayer, 1};
+    region.dstOffsets[1] = region.srcOffsets[1];
+    gpu.vk.vkCmdBlitImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output.image, layout, 1, &region,
+                          VK_FILTER_NEAREST);
+  };
+  auto clear = [&](const ImageRef& output, VkImageLayout layout, float value) {
+    const VkClearColorValue color{{value, value, value, 1.0f}};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, output.arrayLayer, 1};
+    gpu.vk.vkCmdClearColorImage(cmd, output.image, layout, &color, 1, &range);
+  };
+
   // The target as the composite left it; then as each step below leaves it.
   ImageUse target{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0};
-  for (const ImageRef* output : outputs) {
+  for (const ImageRef* output : {&frame.scatteringOutput, &frame.transmittanceOutput}) {
     if (output->empty()) continue;
     const bool isTransmittance = output == &frame.transmittanceOutput;
-    const VkImageLayout layout = keepGeneral(output->layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    const ImageUse transferWrite{layout, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
-    imageBarrier(gpu, cmd, output->image, VK_IMAGE_ASPECT_COLOR_BIT, output->arrayLayer, hostBefore(*output),
-                 transferWrite);
-    const VkImageSubresourceLayers dstLayers{VK_IMAGE_ASPECT_COLOR_BIT, 0, output->arrayLayer, 1};
-    if (fromTargets) {
+    write(*output, [&](VkImageLayout layout) {
+      if (!fromTargets) return clear(*output, layout, isTransmittance ? 1.0f : 0.0f);
       if (isTransmittance) {
         // L_in's reads (the composite's, its copy's) finish before T overwrites it.
         const ImageUse computeWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                                     VK_ACCESS_SHADER_WRITE_BIT};
-        imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, target.stage, 0},
-                     computeWrite);
+        imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                     {VK_IMAGE_LAYOUT_UNDEFINED, target.stage, 0}, computeWrite);
         composite.recordTransmittance(gpu, cmd, slot, constants[slot].buffer, frame.depth,
                                       sampledDepthLayout(frame.depth.layout), scattering.view, extent);
         target = computeWrite;
@@ -719,48 +620,19 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
                                   VK_ACCESS_TRANSFER_READ_BIT};
       imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, target, transferRead);
       target = transferRead;
-      VkImageBlit region{};
-      region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
-      region.dstSubresource = dstLayers;
-      region.dstOffsets[1] = region.srcOffsets[1];
-      gpu.vk.vkCmdBlitImage(cmd, scattering.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output->image, layout, 1,
-                            &region, VK_FILTER_NEAREST);
-    } else {
-      const float value = isTransmittance ? 1.0f : 0.0f;
-      const VkClearColorValue clear{{value, value, value, 1.0f}};
-      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, output->arrayLayer, 1};
-      gpu.vk.vkCmdClearColorImage(cmd, output->image, layout, &clear, 1, &range);
-    }
-    imageBarrier(gpu, cmd, output->image, VK_IMAGE_ASPECT_COLOR_BIT, output->arrayLayer, transferWrite,
-                 hostAfter(*output));
+      blit(scattering.image, *output, layout);
+    });
   }
   if (!frame.debugOutput.empty()) {
     // The debug view, when one was drawn (GENERAL, written by compute); otherwise black.
-    const bool drawn = fromTargets && frame.debugView != DebugView::None && stats.technique == Technique::Epipolar;
-    const ImageRef& output = frame.debugOutput;
-    const VkImageLayout layout = keepGeneral(output.layout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-    const ImageUse transferWrite{layout, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT};
-    imageBarrier(gpu, cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, output.arrayLayer, hostBefore(output),
-                 transferWrite);
-    if (drawn) {
+    const bool drawn = fromTargets && stats.debugViewDrawn;
+    write(frame.debugOutput, [&](VkImageLayout layout) {
+      if (!drawn) return clear(frame.debugOutput, layout, 0.0f);
       imageBarrier(gpu, cmd, debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                    {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
                    {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
-      VkImageBlit region{};
-      region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-      region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
-      region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, output.arrayLayer, 1};
-      region.dstOffsets[1] = region.srcOffsets[1];
-      gpu.vk.vkCmdBlitImage(cmd, debugImage.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output.image, layout, 1,
-                            &region, VK_FILTER_NEAREST);
-    } else {
-      const VkClearColorValue black{{0.0f, 0.0f, 0.0f, 1.0f}};
-      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, output.arrayLayer, 1};
-      gpu.vk.vkCmdClearColorImage(cmd, output.image, layout, &black, 1, &range);
-    }
-    imageBarrier(gpu, cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, output.arrayLayer, transferWrite,
-                 hostAfter(output));
+      blit(debugImage.image, frame.debugOutput, layout);
+    });
   }
   timer.endPass(gpu, cmd);
   stats.passesRecorded.emplace_back(pass);

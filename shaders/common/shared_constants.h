@@ -30,7 +30,7 @@ TYN_CONST uint TYN_SPLIT_MARCH_PARTS = 64u;
 TYN_CONST uint TYN_BINDING_FRAME = 0u;        // FrameConstants (uniform buffer)
 TYN_CONST uint TYN_BINDING_DEPTH = 1u;        // the host's depth buffer
 TYN_CONST uint TYN_BINDING_SHADOW_MAPS = 2u;  // TYN_MAX_SHADOW_MAPS shadow maps
-// The Reference's (reference/reference_scattering.comp, reference_pass.cpp).
+// The Reference's (reference/reference_scattering.comp, reference_technique.cpp).
 TYN_CONST uint TYN_REFERENCE_BINDING_OUT_SCATTERING = 3u;
 TYN_CONST uint TYN_REFERENCE_BINDING_LIGHT_COLOR = 4u;
 TYN_CONST uint TYN_REFERENCE_BINDING_COUNT = 5u;

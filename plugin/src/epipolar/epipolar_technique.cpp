@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <optional>
 
+#include "epipolar/epipolar_plan.h"
 #include "epipolar/light_color_sums.h"
 #include "epipolar/scattering_lut.h"
 #include "tyndall_shaders.h"
@@ -117,9 +118,11 @@ float epipoleBlockRadius(const EpipolarSettings& settings, std::uint32_t height)
   return std::max(settings.epipoleFixupRadius, settings.epipoleFixupHeightFraction * static_cast<float>(height));
 }
 
-Outcome EpipolarTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots,
-                                  std::uint32_t marchParts) {
-  marchParts_ = marchParts;
+Outcome EpipolarTechnique::create(const Gpu& gpu, const TechniqueResources& resources) {
+  const VkSampler nearest = resources.nearest;
+  const VkSampler linear = resources.linear;
+  const std::uint32_t slots = resources.slots;
+  marchParts_ = resources.marchThreadsPerSample;
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
   // Element i is binding i.
@@ -215,7 +218,11 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
 
 // march.comp per light type (TYN_LIGHT_TYPE) and light-colour texture (TYN_MARCH_LIGHT_COLOR,
 // constant_id 1); the fix-up per light type.
-Outcome EpipolarTechnique::ensurePipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled) {
+Outcome EpipolarTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) {
+  return ensureLightPipelines(gpu, frame.light.type, !frame.lightColor.empty(), compiled);
+}
+
+Outcome EpipolarTechnique::ensureLightPipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled) {
   compiled = !commonReady_;
   if (Outcome o = createCommonPipelines(gpu); !o) return o;
   const auto type = static_cast<std::uint32_t>(light);
@@ -245,7 +252,7 @@ Outcome EpipolarTechnique::createPipelines(const Gpu& gpu) {
   bool compiled = false;
   for (LightType light : {LightType::Directional, LightType::Spot, LightType::Point}) {
     for (bool colored : {false, true}) {
-      if (Outcome o = ensurePipelines(gpu, light, colored, compiled); !o) return o;
+      if (Outcome o = ensureLightPipelines(gpu, light, colored, compiled); !o) return o;
     }
   }
   return {};
@@ -293,7 +300,30 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   *this = EpipolarTechnique{};
 }
 
-Outcome EpipolarTechnique::prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
+Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) {
+  const EpipolarSettings& settings = in.frame.epipolar != nullptr ? *in.frame.epipolar : in.choice.epipolar;
+  const EpipolarFramePlan plan = planEpipolarFrame(in.frame, settings, in.extent);
+  if (Outcome o = prepareTextures(gpu, settings, plan.treeSamples, plan.colorSamples, plan.shadowBlocks, in.extent,
+                                  in.frameIndex, in.framesInFlight);
+      !o) {
+    return o;
+  }
+  if (Outcome o = prepareScatteringTable(gpu, in.frame, buildTable_); !o) return o;
+  constants_ = plan.constants;
+  light_ = in.frame.light.type;
+  report.epipolar = plan.stats;
+  report.note = epipolarNote(plan.stats);
+  return {};
+}
+
+void EpipolarTechnique::readBack(std::uint32_t slot, VkExtent2D extent, Stats& stats) {
+  if (Counts counts; takeCounts(slot, counts)) {
+    stats.epipolarCounts = EpipolarCounts{
+        counts.marched, counts.shadowed, static_cast<double>(counts.fixedUp) / (double(extent.width) * extent.height)};
+  }
+}
+
+Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
                                    std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
                                    std::uint64_t frameIndex, std::uint32_t framesInFlight) {
   frameIndex_ = frameIndex;
@@ -486,9 +516,15 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
   gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
 }
 
-void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
-                               const gpu::EpipolarConstants& constants, LightType light, bool buildTable,
-                               VkExtent2D extent, GpuTimer& timer, std::vector<std::string>& passes) {
+void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) {
+  const std::uint32_t slot = target.slot;
+  const Bindings& bindings = target.bindings;
+  const gpu::EpipolarConstants& constants = constants_;
+  const LightType light = light_;
+  const bool buildTable = buildTable_;
+  const VkExtent2D extent = target.extent;
+  GpuTimer& timer = target.timer;
+  std::vector<std::string>& passes = target.passes;
   writeDescriptors(gpu, slot, bindings);
   const VkDescriptorSet set = sets_[slot];
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);

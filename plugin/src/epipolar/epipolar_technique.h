@@ -14,6 +14,7 @@
 #include "epipolar/epipolar_constants.h"
 #include "gpu.h"
 #include "retire_queue.h"
+#include "technique.h"
 #include "timing.h"
 
 namespace tyndall {
@@ -32,22 +33,26 @@ Outcome validateEpipolarSettings(const EpipolarSettings& settings);
 /// `epipoleFixupRadius` and `epipoleFixupHeightFraction` × height.
 float epipoleBlockRadius(const EpipolarSettings& settings, std::uint32_t height);
 
-class EpipolarTechnique {
+class EpipolarTechnique final : public ScatteringTechnique {
  public:
   using Bindings = ScatteringBindings;
 
-  /// `linear`: the light-colour texture's sampler (linear, clamp to edge).
-  /// `marchParts`: threads per marched sample (ContextDesc::marchThreadsPerSample, resolved).
-  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots, std::uint32_t marchParts);
-  /// Compiles every pipeline of the technique (context creation, Context::warmUp).
-  Outcome createPipelines(const Gpu& gpu);
-  /// Compiles what a frame with this light needs and is not compiled yet (PipelineCreation::
-  /// OnFirstUse); `compiled` says whether anything was.
-  Outcome ensurePipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled);
-  void destroy(const Gpu& gpu);
+  Outcome create(const Gpu& gpu, const TechniqueResources& resources) override;
+  Outcome createPipelines(const Gpu& gpu) override;
+  /// Compiles what a frame with this light (and light-colour texture or none) needs.
+  Outcome ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) override;
+  /// planEpipolarFrame, then the textures, the fix-up list and the scattering table it needs.
+  Outcome prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) override;
+  void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
+  /// Stats::epipolarCounts from the slot's previous epipolar frame.
+  void readBack(std::uint32_t slot, VkExtent2D extent, Stats& stats) override;
+  [[nodiscard]] bool drawsDebugViews() const override { return true; }
+  void destroy(const Gpu& gpu) override;
   /// Drops the fix-up list, which holds every pixel: for a new output extent (the GPU idle). The
   /// next prepare() creates it at that extent.
-  void destroySizeDependent(const Gpu& gpu);
+  void destroySizeDependent(const Gpu& gpu) override;
+
+ private:
 
   /// Makes the sample textures match `settings`, the tree texture hold `treeSamples` 1D samples per
   /// slice (0: no tree is built this frame) and the light-colour sums `colorSamples` (0: no
@@ -56,16 +61,10 @@ class EpipolarTechnique {
   /// `shadowBlocks`: the shadow-map block image's extent (shadowBlockExtent), 0 × 0 when the frame
   /// needs none. `extent`: the output's, for the fix-up list, created by the first frame that runs
   /// the technique at that extent.
-  Outcome prepare(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
+  Outcome prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
                   std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
                   std::uint64_t frameIndex, std::uint32_t framesInFlight);
 
-  /// Records every pass; each is timed and appended to `passes`. The host inputs must already
-  /// be readable by compute shaders and the targets writable (GENERAL).
-  /// `buildTable`: from prepareScatteringTable.
-  void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
-              const gpu::EpipolarConstants& constants, LightType light, bool buildTable, VkExtent2D extent,
-              GpuTimer& timer, std::vector<std::string>& passes);
 
   /// A spot or point light's march and fix-up read the semi-analytic scattering table (yusov2013),
   /// built for the frame's medium: creates the table at the first such light and says whether this
@@ -80,8 +79,9 @@ class EpipolarTechnique {
   /// The counts of the slot's previous frame (it has completed when the slot comes round again);
   /// false when unknown.
   bool takeCounts(std::uint32_t slot, Counts& out);
+  /// Compiles what a frame with this light needs (PipelineCreation::OnFirstUse).
+  Outcome ensureLightPipelines(const Gpu& gpu, LightType light, bool colored, bool& compiled);
 
- private:
   struct SampleTextures {
     OwnedImage endPoints;    // slices × 1
     OwnedImage coordinates;  // samples × slices
@@ -154,6 +154,10 @@ class EpipolarTechnique {
   SampleTextures textures_;
   RetireQueue<SampleTextures> retired_;  // see kSpareTextureSets
   std::uint64_t frameIndex_ = 0;
+  // This frame's plan (prepare → record).
+  gpu::EpipolarConstants constants_{};
+  LightType light_ = LightType::Directional;
+  bool buildTable_ = false;
 };
 
 }  // namespace tyndall

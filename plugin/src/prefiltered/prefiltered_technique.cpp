@@ -163,7 +163,10 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
   return {};
 }
 
-Outcome PrefilteredTechnique::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
+Outcome PrefilteredTechnique::create(const Gpu& gpu, const TechniqueResources& resources) {
+  const VkSampler nearest = resources.nearest;
+  const VkSampler linear = resources.linear;
+  const std::uint32_t slots = resources.slots;
   // Rows of a full-circle non-linear map continue across φ = ±π.
   if (Outcome o = createSampler(gpu, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, prefixSampler_); !o) return o;
 
@@ -235,6 +238,7 @@ void PrefilteredTechnique::destroyMaps(const Gpu& gpu, Maps& maps) {
 }
 
 Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
+  if (pipelinesReady_) return {};
   auto make = [&](std::span<const std::uint32_t> spirv, VkPipeline& out, const VkSpecializationInfo* spec = nullptr) {
     return createComputePipeline(gpu, pipelineLayout_, spirv, out, spec);
   };
@@ -324,10 +328,27 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, const MapKey& key, std:
   return {};
 }
 
-Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
-                                      VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
-                                      std::uint32_t framesInFlight, PrefilteredStats& decisions,
-                                      std::string& note) {
+Outcome PrefilteredTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& /*frame*/, bool& compiled) {
+  compiled = !pipelinesReady_;
+  return createPipelines(gpu);
+}
+
+Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) {
+  const PrefilteredSettings& settings = in.frame.prefiltered != nullptr ? *in.frame.prefiltered : in.choice.prefiltered;
+  PrefilteredStats decisions;
+  if (Outcome o = prepareFrame(gpu, in.frame, settings, in.extent, in.slot, in.frameIndex, in.framesInFlight,
+                               decisions, report.note);
+      !o) {
+    return o;
+  }
+  report.prefiltered = decisions;
+  return {};
+}
+
+Outcome PrefilteredTechnique::prepareFrame(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
+                                           VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
+                                           std::uint32_t framesInFlight, PrefilteredStats& decisions,
+                                           std::string& note) {
   retired_.release(frameIndex, framesInFlight, [&](Maps& maps) { destroyMaps(gpu, maps); });
 
   const std::uint32_t basis = static_cast<std::uint32_t>(settings.basis);
@@ -538,8 +559,12 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
   gpu.vk.vkUpdateDescriptorSets(gpu.device, kBindings, writes.data(), 0, nullptr);
 }
 
-void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings,
-                                  VkExtent2D extent, GpuTimer& timer, std::vector<std::string>& passes) {
+void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) {
+  const std::uint32_t slot = target.slot;
+  const Bindings& bindings = target.bindings;
+  const VkExtent2D extent = target.extent;
+  GpuTimer& timer = target.timer;
+  std::vector<std::string>& passes = target.passes;
   writeDescriptors(gpu, slot, bindings);
   const VkDescriptorSet set = sets_[slot];
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);

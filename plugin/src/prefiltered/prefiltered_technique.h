@@ -16,6 +16,7 @@
 #include "gpu.h"
 #include "prefiltered/prefiltered_constants.h"
 #include "retire_queue.h"
+#include "technique.h"
 #include "timing.h"
 
 namespace tyndall {
@@ -23,7 +24,7 @@ namespace tyndall {
 /// Checks a PrefilteredSettings' every field; the message names the field.
 Outcome validatePrefilteredSettings(const PrefilteredSettings& settings);
 
-class PrefilteredTechnique {
+class PrefilteredTechnique final : public ScatteringTechnique {
  public:
   using Bindings = ScatteringBindings;
 
@@ -31,28 +32,26 @@ class PrefilteredTechnique {
   /// per-slot constant buffers: nothing here depends on the output, the settings or the frame.
   /// `linear`: linear, clamp to edge (the moment map's bilinear lookups, and the light-colour
   /// texture the epipole block's Reference walk reads).
-  Outcome create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots);
+  Outcome create(const Gpu& gpu, const TechniqueResources& resources) override;
   /// Compiles the technique's pipelines (at context creation, in Context::warmUp, or in the first
   /// frame that runs it with PipelineCreation::OnFirstUse).
-  Outcome createPipelines(const Gpu& gpu);
-  [[nodiscard]] bool pipelinesReady() const { return pipelinesReady_; }
-  void destroy(const Gpu& gpu);
+  Outcome createPipelines(const Gpu& gpu) override;
+  Outcome ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) override;
+  void destroy(const Gpu& gpu) override;
+  Outcome prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) override;
+  /// Records the passes prepare() chose; each is timed and appended to the target's passes.
+  void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
 
+ private:
   /// The frame's CPU set-up: rectification bounds and the projective/non-linear choice, the
   /// extinction of the prefix weights, the epipole block; writes the slot's constants and makes
   /// the maps match the settings (maps of other sizes are kept until no frame in flight can use
-  /// them). `decisions` and `note` receive what was chosen, for the stats. The light must be directional, and
-  /// something must scatter (a frame without in-scattering runs no technique).
-  Outcome prepare(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings, VkExtent2D extent,
-                  std::uint32_t slot, std::uint64_t frameIndex, std::uint32_t framesInFlight,
-                  PrefilteredStats& decisions, std::string& note);
+  /// them). `decisions` and `note` receive what was chosen, for the stats. The light must be
+  /// directional, and something must scatter (selectTechnique sees to both).
+  Outcome prepareFrame(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings, VkExtent2D extent,
+                       std::uint32_t slot, std::uint64_t frameIndex, std::uint32_t framesInFlight,
+                       PrefilteredStats& decisions, std::string& note);
 
-  /// Records the passes prepare() chose; each is timed and appended to `passes`. The host inputs
-  /// must already be readable by compute shaders and the targets writable (GENERAL).
-  void record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& bindings, VkExtent2D extent,
-              GpuTimer& timer, std::vector<std::string>& passes);
-
- private:
   // What the maps are made for: a frame whose key differs gets new maps.
   struct MapKey {
     std::uint32_t basis = ~0u;

@@ -1,11 +1,13 @@
-#include "reference/reference_pass.h"
+#include "reference/reference_technique.h"
 
 #include "common/shared_constants.h"
 #include "tyndall_shaders.h"
 
 namespace tyndall {
 
-Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linear, std::uint32_t slots) {
+Outcome ReferenceTechnique::create(const Gpu& gpu, const TechniqueResources& resources) {
+  const VkSampler nearest = resources.nearest;
+  const VkSampler linear = resources.linear;
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
   const std::array<VkDescriptorSetLayoutBinding, gpu::TYN_REFERENCE_BINDING_COUNT> bindings{{
@@ -22,11 +24,15 @@ Outcome ReferencePass::create(const Gpu& gpu, VkSampler nearest, VkSampler linea
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + kMaxShadowMaps},
       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
   }};
-  sets_.resize(slots);
+  sets_.resize(resources.slots);
   return allocateDescriptorSets(gpu, setLayout_, sizes, pool_, sets_);
 }
 
-Outcome ReferencePass::ensurePipeline(const Gpu& gpu, LightType light, bool& compiled) {
+Outcome ReferenceTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) {
+  return ensurePipeline(gpu, frame.light.type, compiled);
+}
+
+Outcome ReferenceTechnique::ensurePipeline(const Gpu& gpu, LightType light, bool& compiled) {
   VkPipeline& pipeline = pipelines_[static_cast<std::size_t>(light)];
   compiled = pipeline == VK_NULL_HANDLE;
   if (!compiled) return {};
@@ -35,7 +41,7 @@ Outcome ReferencePass::ensurePipeline(const Gpu& gpu, LightType light, bool& com
   return createSpecializedPipeline(gpu, pipelineLayout_, shaders::reference_scattering_comp(), constants, pipeline);
 }
 
-Outcome ReferencePass::createPipelines(const Gpu& gpu) {
+Outcome ReferenceTechnique::createPipelines(const Gpu& gpu) {
   bool compiled = false;
   for (LightType light : {LightType::Directional, LightType::Spot, LightType::Point}) {
     if (Outcome o = ensurePipeline(gpu, light, compiled); !o) return o;
@@ -43,17 +49,18 @@ Outcome ReferencePass::createPipelines(const Gpu& gpu) {
   return {};
 }
 
-void ReferencePass::destroy(const Gpu& gpu) {
+void ReferenceTechnique::destroy(const Gpu& gpu) {
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
   destroyPipelines(gpu, pipelines_);
   if (pipelineLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, pipelineLayout_, gpu.allocator);
   if (setLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, setLayout_, gpu.allocator);
-  *this = ReferencePass{};
+  *this = ReferenceTechnique{};
 }
 
-void ReferencePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, const Bindings& b,
-                           VkExtent2D extent) {
-  const VkDescriptorSet set = sets_[slot];
+void ReferenceTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) {
+  const ScatteringBindings& b = target.bindings;
+  const VkExtent2D extent = target.extent;
+  const VkDescriptorSet set = sets_[target.slot];
   const VkDescriptorBufferInfo constants{b.constants, 0, sizeof(gpu::FrameConstants)};
   const VkDescriptorImageInfo depth{VK_NULL_HANDLE, b.depth, b.depthLayout};
   const std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadow = shadowMapImageInfos(b);

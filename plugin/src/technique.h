@@ -1,0 +1,80 @@
+// The interface every scattering technique implements. The context selects one per frame
+// (technique_selection.h), lets it prepare the frame on the CPU, acquires the host's images, has it
+// record its passes into the L_in target, and composites; it knows nothing of any technique's data.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu.h"
+#include "profiles.h"
+#include "timing.h"
+
+namespace tyndall {
+
+/// What every technique is created with.
+struct TechniqueResources {
+  VkSampler nearest = VK_NULL_HANDLE;  ///< nearest, clamp to edge
+  VkSampler linear = VK_NULL_HANDLE;   ///< linear, clamp to edge (the light-colour texture's)
+  std::uint32_t slots = 1;             ///< frames in flight: one descriptor set and constant buffer each
+  std::uint32_t marchThreadsPerSample = 1;  ///< ContextTuning::marchThreadsPerSample, resolved by device
+};
+
+/// What a technique's frame is made from.
+struct FrameInputs {
+  const FrameDesc& frame;
+  const ProfileChoice& choice;  ///< the profile row; FrameDesc's settings override its parameters
+  VkExtent2D extent{};          ///< the output's
+  std::uint32_t slot = 0;       ///< the frame-in-flight slot
+  std::uint64_t frameIndex = 0;
+  std::uint32_t framesInFlight = 1;
+};
+
+/// What a technique decided for the frame, for the stats.
+struct TechniqueReport {
+  std::string note;  ///< appended to Stats::techniqueNote, starting with "; " when not empty
+  std::optional<EpipolarStats> epipolar;
+  std::optional<PrefilteredStats> prefiltered;
+};
+
+/// Where a technique records: the frame's inputs, readable by compute shaders, and the L_in
+/// target, writable (GENERAL). Each pass is timed by `timer` and its name appended to `passes`.
+struct RecordTarget {
+  std::uint32_t slot = 0;
+  const ScatteringBindings& bindings;
+  VkExtent2D extent{};
+  GpuTimer& timer;
+  std::vector<std::string>& passes;
+};
+
+class ScatteringTechnique {
+ public:
+  virtual ~ScatteringTechnique() = default;
+
+  /// Size-independent resources: layouts, descriptor sets, constant buffers (no pipeline).
+  virtual Outcome create(const Gpu& gpu, const TechniqueResources& resources) = 0;
+  /// Compiles every pipeline (context creation with PipelineCreation::AtCreate, Context::warmUp).
+  virtual Outcome createPipelines(const Gpu& gpu) = 0;
+  /// Compiles what this frame needs and is not compiled yet; `compiled` says whether anything was.
+  virtual Outcome ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) = 0;
+  /// The frame's CPU set-up: parameters validated, resources sized, constants written. Nothing is
+  /// recorded; a failure leaves the frame unrecorded.
+  virtual Outcome prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) = 0;
+  /// Records the passes prepare() chose, in the same frame.
+  virtual void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) = 0;
+  /// A technique recorded as one timed pass names it: the context opens that pass before it
+  /// acquires the frame's inputs, so that on a driver that takes timestamps when it flushes (at
+  /// barriers) the stamps bracket the work. Techniques that time their own passes return nullptr.
+  [[nodiscard]] virtual const char* singlePassName() const { return nullptr; }
+  /// Whether the technique draws FrameDesc::debugView; the context then provides the image.
+  [[nodiscard]] virtual bool drawsDebugViews() const { return false; }
+  /// Reads what the slot's previous frame counted on the GPU (it has completed when the slot comes
+  /// round again) into `stats`; nothing by default.
+  virtual void readBack(std::uint32_t /*slot*/, VkExtent2D /*extent*/, Stats& /*stats*/) {}
+  /// Drops what depends on the output's size (the GPU idle).
+  virtual void destroySizeDependent(const Gpu& /*gpu*/) {}
+  virtual void destroy(const Gpu& gpu) = 0;
+};
+
+}  // namespace tyndall

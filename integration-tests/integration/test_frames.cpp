@@ -151,6 +151,9 @@ TEST(PassesRecorded, VacuumAndAbsorptionOnly) {
   const samples::RenderResult vacuum = renderWithAovs(scene, smallOptions());
   EXPECT_EQ(vacuum.stats.passesRecorded, std::vector<std::string>{"aov_clear"});
   EXPECT_EQ(vacuum.stats.technique, Technique::None);
+  EXPECT_EQ(vacuum.stats.composite, CompositePath::None);
+  EXPECT_EQ(vacuum.stats.dispatches, 0u);  // the AOVs are cleared, nothing computed
+  EXPECT_GT(vacuum.stats.barriers, 0u);
   for (std::size_t i = 0; i < vacuum.scattering.pixels.size(); i += 4) {
     ASSERT_EQ(vacuum.scattering.pixels[i], 0.0f);
     ASSERT_EQ(vacuum.transmittance.pixels[i], 1.0f);
@@ -162,12 +165,36 @@ TEST(PassesRecorded, VacuumAndAbsorptionOnly) {
             (std::vector<std::string>{"scattering_clear", "composite", "aov_output"}));
   EXPECT_EQ(absorbing.stats.technique, Technique::None);
   EXPECT_EQ(absorbing.stats.techniqueChange, TechniqueChange::NothingScatters) << absorbing.stats.techniqueNote;
+  // T's AOV pass, and the composite where it runs in compute.
+  EXPECT_EQ(absorbing.stats.dispatches, absorbing.stats.composite == CompositePath::Compute ? 2u : 1u);
   double minT = 1.0;
   for (std::size_t i = 0; i < absorbing.scattering.pixels.size(); i += 4) {
     ASSERT_EQ(absorbing.scattering.pixels[i], 0.0f);
     minT = std::min(minT, static_cast<double>(absorbing.transmittance.pixels[i]));
   }
   EXPECT_LT(minT, 0.9);
+  expectNoValidationMessages();
+}
+
+// Stats::dispatches and Stats::barriers count what a frame recorded: the Reference is one dispatch
+// (plus T's AOV pass and a compute composite), the epipolar profiles a chain of passes whose every
+// dispatch follows a barrier.
+TEST(Profiles, StatsCountTheDispatchesAndBarriersRecorded) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  for (Profile profile : {Profile::Reference, Profile::High, Profile::Balanced, Profile::Performance}) {
+    samples::RenderOptions options = smallOptions(32, 18);
+    options.profile = profile;
+    const samples::RenderResult r = renderWithAovs(scene, options);
+    const std::uint32_t composite = r.stats.composite == CompositePath::Compute ? 1u : 0u;
+    std::printf("[ passes ] %s: %u dispatches, %u barriers, composite %s\n", to_string(profile), r.stats.dispatches,
+                r.stats.barriers, to_string(r.stats.composite));
+    if (profile == Profile::Reference) {
+      EXPECT_EQ(r.stats.dispatches, 2u + composite);
+    } else {
+      EXPECT_GT(r.stats.dispatches, 4u + composite) << to_string(profile);
+    }
+    EXPECT_GE(r.stats.barriers, r.stats.dispatches) << to_string(profile);
+  }
   expectNoValidationMessages();
 }
 

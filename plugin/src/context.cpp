@@ -61,8 +61,11 @@ ImageUse hostAfter(const ImageRef& image) {
 // shader (T) and by the T AOV's compute pass.
 constexpr VkPipelineStageFlags kDepthReaders =
     VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
-// The L_in target's readers in a frame: the composite's fragment shader and the AOV copies.
-constexpr VkPipelineStageFlags kTargetReaders = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT;
+// The L_in target is sampled by the composite, a fragment or a compute shader (whichever path the
+// back buffer allows), then copied to the AOVs.
+constexpr VkPipelineStageFlags kTargetSamplers =
+    VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+constexpr VkPipelineStageFlags kTargetReaders = kTargetSamplers | VK_PIPELINE_STAGE_TRANSFER_BIT;
 // Transfer destination: a frame without in-scattering clears L_in instead of running a technique.
 constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                            VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
@@ -166,6 +169,9 @@ Outcome Context::Impl::createSizeIndependent() {
       return failure(Status::UnsupportedFormat, "backBufferFormat has no COLOR_ATTACHMENT_BLEND support");
     }
     if (Outcome o = composite.ensurePipeline(gpu, desc.backBufferFormat); !o) return o;
+    if (compositeFormatRunsInCompute(gpu, desc.backBufferFormat)) {
+      if (Outcome o = composite.ensureComputePipeline(gpu, desc.backBufferFormat); !o) return o;
+    }
   }
   return {};
 }
@@ -318,11 +324,17 @@ Outcome Context::record(VkCommandBuffer commandBuffer, const FrameDesc& frame) {
 Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   FrameSetup setup;
   if (Outcome o = prepareFrame(gpu, extent, frame, setup); !o) return fail(o);
-  if (setup.attenuates && !composite.hasPipeline(frame.color.format)) {
+  const bool computeComposite = compositeRunsInCompute(gpu, frame.color);
+  if (setup.attenuates && !(computeComposite ? composite.hasComputePipeline(frame.color.format)
+                                             : composite.hasPipeline(frame.color.format))) {
     report(Severity::Warning, "composite pipeline for back-buffer format " +
                                   std::to_string(static_cast<int>(frame.color.format)) +
                                   " built during record; pass ContextDesc::backBufferFormat to build it up front");
-    if (Outcome o = composite.ensurePipeline(gpu, frame.color.format); !o) return fail(o);
+    if (Outcome o = computeComposite ? composite.ensureComputePipeline(gpu, frame.color.format)
+                                     : composite.ensurePipeline(gpu, frame.color.format);
+        !o) {
+      return fail(o);
+    }
   }
 
   const std::uint32_t slot = static_cast<std::uint32_t>(stats.frameIndex % desc.maxFramesInFlight);
@@ -397,6 +409,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   stats.pointLightWalkOverCpuLoopLimit = overLoopLimit;
   stats.debugViewDrawn = drawsDebugView;
   stats.passesRecorded.clear();
+  gpu.dispatches = 0;
+  gpu.barriers = 0;
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
   // Counts the slot's previous frame left, whichever technique runs now.
   for (ScatteringTechnique* t : techniques) t->readBack(slot, extent, stats);
@@ -413,7 +427,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     recordAovs(cmd, slot, frame, false);
   } else {
     stats.technique = technique;  // None when nothing scatters
-    stats.composite = CompositePath::Fragment;
+    stats.composite = computeComposite ? CompositePath::Compute : CompositePath::Fragment;
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
     recordScattering(cmd, slot, frame, runs);
@@ -438,6 +452,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   };
   stats.autoEstimateMilliseconds = {estimate(Profile::High), estimate(Profile::Balanced), estimate(Profile::Performance)};
   stats.deviceMemoryBytes = gpu.allocatedBytes;
+  stats.dispatches = gpu.dispatches;
+  stats.barriers = gpu.barriers;
   ++stats.frameIndex;
   return {};
 }
@@ -461,17 +477,31 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back("scattering_clear");
     imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, transferWrite,
-                 {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                 {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers,
                   VK_ACCESS_SHADER_READ_BIT});
   } else {
     recordTechnique(cmd, slot, frame, *technique, depthLayout);
   }
 
-  // Composite into the back buffer.
+  // Composite into the back buffer: in place by compute where it is a storage image, else blended.
+  timer.beginPass(gpu, cmd, "composite");
+  if (stats.composite == CompositePath::Compute) {
+    const ImageUse readWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
+    imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
+                 hostBefore(frame.color), readWrite);
+    composite.recordCompute(gpu, cmd, slot, constants[slot].buffer, frame.depth, depthLayout, scattering.view,
+                            frame.color);
+    timer.endPass(gpu, cmd);
+    stats.passesRecorded.emplace_back("composite");
+    imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
+                 {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
+                 hostAfter(frame.color));
+    return;
+  }
   const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   const VkPipelineStageFlags output = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkAccessFlags blend = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  timer.beginPass(gpu, cmd, "composite");
   imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
                hostBefore(frame.color), {attachment, output, blend});
   composite.record(gpu, cmd, slot, constants[slot].buffer, frame.depth, depthLayout, scattering.view,
@@ -562,7 +592,7 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
   }
   imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
-               {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT});
+               {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, VK_ACCESS_SHADER_READ_BIT});
 }
 
 // Copies L_in and T to the host's AOV images (blit: converts to their format), or, when
@@ -599,7 +629,7 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
   };
 
   // The target as the composite left it; then as each step below leaves it.
-  ImageUse target{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT, 0};
+  ImageUse target{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, 0};
   for (const ImageRef* output : {&frame.scatteringOutput, &frame.transmittanceOutput}) {
     if (output->empty()) continue;
     const bool isTransmittance = output == &frame.transmittanceOutput;

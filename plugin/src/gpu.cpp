@@ -164,7 +164,7 @@ void memoryBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkPipelineStageFlags src
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = srcAccess;
   barrier.dstAccessMask = dstAccess;
-  gpu.vk.vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+  gpu.cmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
 void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
@@ -178,7 +178,7 @@ void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAsp
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
   barrier.subresourceRange = {aspect, 0, 1, layer, 1};
-  gpu.vk.vkCmdPipelineBarrier(cmd, from.stage, to.stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
+  gpu.cmdPipelineBarrier(cmd, from.stage, to.stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
 }
 
 bool isDepthFormat(VkFormat format) {

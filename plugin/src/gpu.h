@@ -24,8 +24,27 @@ struct Gpu {
   /// Device memory allocated through createImage / create*Buffer and not freed yet, bytes
   /// (Stats::deviceMemoryBytes). Counted here because every allocation goes through those helpers.
   mutable VkDeviceSize allocatedBytes = 0;
+  /// Dispatches and pipeline barriers recorded through the helpers below since the context last
+  /// reset them (Stats::dispatches, Stats::barriers); every pass records through them.
+  mutable std::uint32_t dispatches = 0;
+  mutable std::uint32_t barriers = 0;
 
   VkFormatFeatureFlags optimalFeatures(VkFormat format) const;
+  void cmdDispatch(VkCommandBuffer cmd, std::uint32_t x, std::uint32_t y, std::uint32_t z) const {
+    ++dispatches;
+    vk.vkCmdDispatch(cmd, x, y, z);
+  }
+  void cmdDispatchIndirect(VkCommandBuffer cmd, VkBuffer buffer, VkDeviceSize offset) const {
+    ++dispatches;
+    vk.vkCmdDispatchIndirect(cmd, buffer, offset);
+  }
+  void cmdPipelineBarrier(VkCommandBuffer cmd, VkPipelineStageFlags src, VkPipelineStageFlags dst,
+                          VkDependencyFlags flags, std::uint32_t memoryCount, const VkMemoryBarrier* memoryBarriers,
+                          std::uint32_t bufferCount, const VkBufferMemoryBarrier* buffers, std::uint32_t imageCount,
+                          const VkImageMemoryBarrier* images) const {
+    ++barriers;
+    vk.vkCmdPipelineBarrier(cmd, src, dst, flags, memoryCount, memoryBarriers, bufferCount, buffers, imageCount, images);
+  }
 };
 
 /// An outcome for a failed Vulkan call, e.g. vkFailed("vkCreateImage", VK_ERROR_...).

@@ -37,6 +37,9 @@ TYN_CONST uint TYN_REFERENCE_BINDING_COUNT = 5u;
 // The composite's and its T AOV's (composite/, composite_pass.cpp): L_in read, or T written.
 TYN_CONST uint TYN_COMPOSITE_BINDING_TARGET = 2u;
 TYN_CONST uint TYN_COMPOSITE_BINDING_COUNT = 3u;
+// The compute composite's back buffer (storage, read and written in place).
+TYN_CONST uint TYN_COMPOSITE_BINDING_COLOR = 3u;
+TYN_CONST uint TYN_COMPOSITE_COMPUTE_BINDING_COUNT = 4u;
 
 // One component of the medium (std140: 32 bytes, C++ the same).
 struct MediumComponentConstants {

@@ -1,6 +1,7 @@
 #include "composite/composite_pass.h"
 
 #include <array>
+#include <span>
 
 #include "common/shared_constants.h"
 #include "tyndall_shaders.h"
@@ -24,7 +25,27 @@ void writeSet(const Gpu& gpu, VkDescriptorSet set, VkBuffer constants, const Ima
   gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 }
 
+// The compute composite's SPIR-V per back-buffer format (its storage format qualifier), or empty.
+std::span<const std::uint32_t> computeShaderFor(VkFormat format) {
+  switch (format) {
+    case VK_FORMAT_R16G16B16A16_SFLOAT: return shaders::composite_rgba16f_comp();
+    case VK_FORMAT_R32G32B32A32_SFLOAT: return shaders::composite_rgba32f_comp();
+    case VK_FORMAT_R8G8B8A8_UNORM: return shaders::composite_rgba8_comp();
+    case VK_FORMAT_A2B10G10R10_UNORM_PACK32: return shaders::composite_rgb10_a2_comp();
+    default: return {};
+  }
+}
+
 }  // namespace
+
+bool compositeFormatRunsInCompute(const Gpu& gpu, VkFormat format) {
+  return !computeShaderFor(format).empty() &&
+         (gpu.optimalFeatures(format) & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
+}
+
+bool compositeRunsInCompute(const Gpu& gpu, const ImageRef& color) {
+  return (color.usage & VK_IMAGE_USAGE_STORAGE_BIT) != 0 && compositeFormatRunsInCompute(gpu, color.format);
+}
 
 Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t slots) {
   const VkShaderStageFlags fragment = VK_SHADER_STAGE_FRAGMENT_BIT;
@@ -58,6 +79,23 @@ Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
       !o) {
     return o;
   }
+  const std::array<VkDescriptorSetLayoutBinding, gpu::TYN_COMPOSITE_COMPUTE_BINDING_COUNT> computeBindings{{
+      {gpu::TYN_BINDING_FRAME, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, compute, nullptr},
+      {gpu::TYN_BINDING_DEPTH, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, &nearest},
+      {gpu::TYN_COMPOSITE_BINDING_TARGET, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, compute, &nearest},
+      {gpu::TYN_COMPOSITE_BINDING_COLOR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, compute, nullptr},
+  }};
+  if (Outcome o = createLayouts(gpu, computeBindings, nullptr, computeSetLayout_, computeLayout_); !o) return o;
+  const std::array<VkDescriptorPoolSize, 3> computeSizes{{
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
+  }};
+  computeSets_.resize(slots);
+  if (Outcome o = allocateDescriptorSets(gpu, computeSetLayout_, computeSizes, computePool_, computeSets_); !o) {
+    return o;
+  }
+
   const std::array<VkDescriptorPoolSize, 3> aovSizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1},
@@ -68,6 +106,12 @@ Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
 }
 
 void CompositePass::destroy(const Gpu& gpu) {
+  if (computePool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, computePool_, gpu.allocator);
+  for (auto& [format, pipeline] : computePipelines_) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
+  if (computeLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, computeLayout_, gpu.allocator);
+  if (computeSetLayout_ != VK_NULL_HANDLE) {
+    gpu.vk.vkDestroyDescriptorSetLayout(gpu.device, computeSetLayout_, gpu.allocator);
+  }
   if (transmittancePool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, transmittancePool_, gpu.allocator);
   if (transmittancePipeline_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, transmittancePipeline_, gpu.allocator);
   if (transmittanceLayout_ != VK_NULL_HANDLE) {
@@ -183,6 +227,35 @@ void CompositePass::record(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t sl
   gpu.vk.vkCmdEndRendering(cmd);
 }
 
+Outcome CompositePass::ensureComputePipeline(const Gpu& gpu, VkFormat format) {
+  if (computePipelines_.contains(format)) return {};
+  const std::span<const std::uint32_t> spirv = computeShaderFor(format);
+  if (spirv.empty()) return failure(Status::UnsupportedFormat, "the compute composite has no shader for this format");
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  if (Outcome o = createComputePipeline(gpu, computeLayout_, spirv, pipeline); !o) return o;
+  computePipelines_.emplace(format, pipeline);
+  return {};
+}
+
+void CompositePass::recordCompute(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
+                                  const ImageRef& depth, VkImageLayout depthLayout, VkImageView scattering,
+                                  const ImageRef& color) {
+  const VkDescriptorSet set = computeSets_[slot];
+  writeSet(gpu, set, constants, depth, depthLayout, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+           {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  const VkDescriptorImageInfo backBuffer{VK_NULL_HANDLE, color.view, VK_IMAGE_LAYOUT_GENERAL};
+  const VkWriteDescriptorSet colorWrite = [&] {
+    VkWriteDescriptorSet w = descriptorWrite(set, gpu::TYN_COMPOSITE_BINDING_COLOR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+    w.pImageInfo = &backBuffer;
+    return w;
+  }();
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, 1, &colorWrite, 0, nullptr);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computePipelines_.at(color.format));
+  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computeLayout_, 0, 1, &set, 0, nullptr);
+  const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
+  gpu.cmdDispatch(cmd, (color.extent.width + group - 1) / group, (color.extent.height + group - 1) / group, 1);
+}
+
 void CompositePass::recordTransmittance(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
                                         const ImageRef& depth, VkImageLayout depthLayout, VkImageView target,
                                         VkExtent2D extent) {
@@ -192,7 +265,7 @@ void CompositePass::recordTransmittance(const Gpu& gpu, VkCommandBuffer cmd, std
   gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, transmittancePipeline_);
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, transmittanceLayout_, 0, 1, &set, 0, nullptr);
   const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
-  gpu.vk.vkCmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
+  gpu.cmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
 }
 
 }  // namespace tyndall

@@ -550,7 +550,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
     memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                   readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    gpu.vk.vkCmdDispatchIndirect(cmd, args, offset);
+    gpu.cmdDispatchIndirect(cmd, args, offset);
     timer.endPass(gpu, cmd);
     passes.emplace_back(name);
   };
@@ -586,34 +586,34 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   gpu.vk.vkCmdFillBuffer(cmd, textures_.marchList.buffer, 0, kMarchHeaderWords * sizeof(std::uint32_t), 0);
 
   pass("epipolar_slice_end_points", slicePipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+       [&] { gpu.cmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
   pass("epipolar_coordinates", coordinatesPipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+       [&] { gpu.cmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   // Each slice's line in the shadow map and its min/max tree: only for the lights that march
   // along one line (directional, spot), the tree only when the march uses it. Before the
   // refinement, which leaves samples whose whole ray the tree shows in shadow out of the march.
   if (light != LightType::Point) {
     pass("epipolar_slice_uv", sliceUvPipeline_,
-         [&] { gpu.vk.vkCmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
+         [&] { gpu.cmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
     if (constants.tree_enabled != 0) {
-      pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+      pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
     }
     // With a light-colour texture, its sums along each line (the march's mean colours).
     if (textures_.colorSamples != 0) {
-      pass("epipolar_light_color_sums", colorSumsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+      pass("epipolar_light_color_sums", colorSumsPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
     }
   }
-  pass("epipolar_refine", refinePipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+  pass("epipolar_refine", refinePipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
   if (buildTable) {
     pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
-      gpu.vk.vkCmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
+      gpu.cmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
     });
   }
   // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
   // refinement adds.
   const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
   auto marchRound = [&](const char* argsName, const char* name) {
-    pass(argsName, marchArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+    pass(argsName, marchArgsPipeline_, [&] { gpu.cmdDispatch(cmd, 1, 1, 1); });
     indirectPass(name, march, textures_.marchList.buffer, 0);
   };
   // A point light's samples are all walked through its six maps (no slice line): their blocks
@@ -621,28 +621,28 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   if (shadowBlocksUsed_ && light == LightType::Point) {
     const std::uint32_t side = shadowBlocks_.extent.width;
     pass("epipolar_shadow_blocks", shadowBlocksPipeline_, [&] {
-      gpu.vk.vkCmdDispatch(cmd, groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP),
+      gpu.cmdDispatch(cmd, groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP),
                            groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP), shadowBlocks_.extent.height / side);
     });
   }
   // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
   if (light != LightType::Point && constants.tree_enabled != 0) {
-    pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+    pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.cmdDispatch(cmd, 1, 1, 1); });
     indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, 0);
   }
   marchRound("epipolar_march_args", "epipolar_march");
   if (constants.intensity_refinement_threshold < 1.0f) {
-    pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.vk.vkCmdDispatch(cmd, slices, 1, 1); });
+    pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
     marchRound("epipolar_march_args_refined", "epipolar_march_refined");
   }
   pass("epipolar_interpolate", interpolatePipeline_,
-       [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+       [&] { gpu.cmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
   pass("epipolar_unwarp", unwarpPipeline_, [&] {
-    gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
+    gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
   pass("epipolar_fixup_args", fixupArgsPipelines_[serialFixup(marchParts_, light) ? 1 : 0],
-       [&] { gpu.vk.vkCmdDispatch(cmd, 1, 1, 1); });
+       [&] { gpu.cmdDispatch(cmd, 1, 1, 1); });
   // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
   // enough rays to repay the blocks; fixup_args.comp decides, zero groups otherwise.
   if (shadowBlocksUsed_ && light == LightType::Directional) {
@@ -654,14 +654,14 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
 
   if (bindings.debugView != DebugView::None) {
     pass("epipolar_debug_background", debugBackgroundPipeline_, [&] {
-      gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
+      gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                            groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
     });
     if (bindings.debugView == DebugView::EpipolarSamples) {
       pass("epipolar_debug_samples", debugSamplesPipeline_,
-           [&] { gpu.vk.vkCmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
+           [&] { gpu.cmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
     } else {
-      pass("epipolar_debug_fixup", debugFixupPipeline_, [&] { gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0); });
+      pass("epipolar_debug_fixup", debugFixupPipeline_, [&] { gpu.cmdDispatchIndirect(cmd, fixupArgs_.buffer, 0); });
     }
   }
 

@@ -118,7 +118,7 @@ void discardToGeneral(const Gpu& gpu, VkCommandBuffer cmd, std::initializer_list
     b.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, VK_REMAINING_ARRAY_LAYERS};
     barriers.push_back(b);
   }
-  gpu.vk.vkCmdPipelineBarrier(cmd, kCompute, kCompute, 0, 0, nullptr, 0, nullptr,
+  gpu.cmdPipelineBarrier(cmd, kCompute, kCompute, 0, 0, nullptr, 0, nullptr,
                               static_cast<std::uint32_t>(barriers.size()), barriers.data());
 }
 
@@ -588,11 +588,11 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Rec
   if (plan_.filtered) {
     const std::uint32_t size = maps_.key.momentMapSize;
     pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {
-      gpu.vk.vkCmdDispatch(cmd, groups(size, gpu::TYN_PF_TEXEL_GROUP), groups(size, gpu::TYN_PF_TEXEL_GROUP), 1);
+      gpu.cmdDispatch(cmd, groups(size, gpu::TYN_PF_TEXEL_GROUP), groups(size, gpu::TYN_PF_TEXEL_GROUP), 1);
     });
   }
   pass("prefiltered_rectify", rectifyPipelines_[plan_.basis], [&] {
-    gpu.vk.vkCmdDispatch(cmd, groups(maps_.key.columns, gpu::TYN_PF_TEXEL_GROUP),
+    gpu.cmdDispatch(cmd, groups(maps_.key.columns, gpu::TYN_PF_TEXEL_GROUP),
                          groups(maps_.key.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
   });
   const auto scheme = static_cast<std::size_t>(plan_.prefixSums);
@@ -600,11 +600,11 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Rec
   const std::uint32_t rowsPerGroup = kPrefixSumSchemes[scheme][1];
   pass("prefiltered_prefix_sums", prefix, [&] {
     // One more layer builds the rows' min/max trees for the trimmed segments (prefix_sums.glsl).
-    gpu.vk.vkCmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup),
+    gpu.cmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup),
                          plan_.sets * slotsOf(storage) + (plan_.boundsTree ? 1u : 0u));
   });
   pass("prefiltered_evaluate", evaluatePipelines_[plan_.basis], [&] {
-    gpu.vk.vkCmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
+    gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
   if (plan_.epipoleBlock) {
@@ -613,7 +613,7 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Rec
     memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, VK_ACCESS_SHADER_WRITE_BIT, kCompute,
                   readWrite);
     gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupArgsPipeline_);
-    gpu.vk.vkCmdDispatch(cmd, 1, 1, 1);
+    gpu.cmdDispatch(cmd, 1, 1, 1);
     timer.endPass(gpu, cmd);
     passes.emplace_back("prefiltered_epipole_fixup_args");
 
@@ -621,7 +621,7 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Rec
     memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                   readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
     gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipeline_);
-    gpu.vk.vkCmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
+    gpu.cmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
     timer.endPass(gpu, cmd);
     passes.emplace_back("prefiltered_epipole_fixup");
   }

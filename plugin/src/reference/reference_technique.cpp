@@ -83,7 +83,7 @@ void ReferenceTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Recor
   gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<std::size_t>(b.light)]);
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
   const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
-  gpu.vk.vkCmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
+  gpu.cmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
 }
 
 }  // namespace tyndall

@@ -1,7 +1,9 @@
 # Checks bench.tiny_sweep_*'s outputs: every file there, and in results.json the schedule the sweep
 # ran with (SCHEDULE) and the rows it must have (pillars: Reference + 2 configurations measured;
 # spot-lamp: Reference + epipolar measured, prefiltered skipped with its reason), each measured row
-# with a positive time, ratios to the Reference and the floor, a finite error and no NaN/Inf; each
+# with a positive time, ratios to the Reference and the floor, a finite error and no NaN/Inf, the
+# composite it ran (fragment or compute), the compute floor measured beside the fragment floor (the
+# tiny sweep's back buffer is storage-capable) and its dispatch and barrier counts; each
 # row names its scene's light; choice.json has a choice per profile for each kind of light, and
 # pareto.json a plot per kind (pareto-64x36-256-directional, -local) beside the one over every
 # scene, each with its Pareto front and the profiles' picks (scripts.plot_pareto draws them).
@@ -42,6 +44,22 @@ foreach(i RANGE ${last})
     string(JSON value GET "${json}" rows ${i} ${key})
     if(NOT value GREATER 0)
       message(FATAL_ERROR "row ${i} (${scene}, ${technique}): ${key} = ${value}, expected > 0")
+    endif()
+  endforeach()
+  string(JSON composite GET "${json}" rows ${i} composite)
+  if(NOT composite MATCHES "^(fragment|compute)$")
+    message(FATAL_ERROR "row ${i} (${scene}, ${technique}): composite '${composite}'")
+  endif()
+  string(JSON compute_floor GET "${json}" rows ${i} computeFloorMilliseconds)
+  string(JSON compute_floor_note GET "${json}" rows ${i} computeFloorNote)
+  if(NOT compute_floor GREATER 0 OR NOT compute_floor_note STREQUAL "")
+    message(FATAL_ERROR "row ${i} (${scene}, ${technique}): compute floor ${compute_floor} ms ('${compute_floor_note}')")
+  endif()
+  foreach(key dispatches barriers)
+    string(JSON type TYPE "${json}" rows ${i} ${key})
+    string(JSON value GET "${json}" rows ${i} ${key})
+    if(NOT type STREQUAL "NUMBER" OR NOT value MATCHES "^[0-9]+$")
+      message(FATAL_ERROR "row ${i} (${scene}, ${technique}): ${key} = ${value} (${type}), expected a count")
     endif()
   endforeach()
   string(JSON non_finite GET "${json}" rows ${i} nonFinite)

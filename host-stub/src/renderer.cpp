@@ -282,8 +282,11 @@ bool Renderer::Impl::checkFormats(std::string& error) {
   }
   colorUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-  // Engines make the back buffer storage-capable where the format allows, for compute post-processes.
-  if ((features & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0) colorUsage |= VK_IMAGE_USAGE_STORAGE_BIT;
+  // Engines make the back buffer storage-capable where the format allows, for compute post-processes;
+  // the setting turns it off so the fragment paths can be exercised on the same format.
+  if (settings.storageBackBuffer && (features & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0) {
+    colorUsage |= VK_IMAGE_USAGE_STORAGE_BIT;
+  }
 
   vkGetPhysicalDeviceFormatProperties(gpu.physicalDevice, detail::kAovFormat, &properties);
   const VkFormatFeatureFlags aovFeatures = properties.optimalTilingFeatures;
@@ -571,15 +574,16 @@ bool Renderer::renderFrame(std::string& error) {
   inputs.view = glm::mat4(r.camera.view);
   inputs.projection = glm::mat4(r.camera.projection);
   inputs.scene = &r.scene;
-  auto hostImage = [](const vk::Image& image, VkImageLayout layout) {
-    return HostImage{image.image(), image.view(), image.format(), image.extent(), layout};
+  auto hostImage = [](const vk::Image& image, VkImageLayout layout, VkImageUsageFlags usage = 0) {
+    return HostImage{image.image(), image.view(), image.format(), image.extent(), layout, usage};
   };
   for (std::size_t i = 0; i < slot.shadowMaps.size(); ++i) {
     inputs.shadowMaps.push_back({hostImage(slot.shadowMaps[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
                                  glm::mat4(r.shadowViews.worldToShadowClip[i])});
   }
   inputs.depth = hostImage(slot.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-  inputs.color = hostImage(slot.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  // Effects choose a compute composite only when the back buffer reports STORAGE usage.
+  inputs.color = hostImage(slot.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, r.colorUsage);
   if (!r.scene.light.colorTexture.empty()) {
     inputs.lightColor = hostImage(r.lightColor, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   }

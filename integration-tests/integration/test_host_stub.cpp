@@ -645,6 +645,30 @@ TEST_F(HostStub, EffectsReceiveTheDocumentedInputsPerFrameSlot) {
   }
 }
 
+// The back buffer reports its usage; STORAGE is there exactly when the setting asks for it and the
+// format supports storage images (an _SRGB format usually does not), so effects can pick compute.
+TEST_F(HostStub, BackBufferUsageFollowsTheStorageSetting) {
+  const Scene scene = pointScene();
+  for (const VkFormat format : {VK_FORMAT_R16G16B16A16_SFLOAT, VK_FORMAT_R8G8B8A8_SRGB}) {
+    VkFormatProperties properties{};
+    vkGetPhysicalDeviceFormatProperties(device_->physicalDevice(), format, &properties);
+    const bool storageFormat = (properties.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT) != 0;
+    for (const bool storage : {true, false}) {
+      SCOPED_TRACE(std::to_string(static_cast<int>(format)) + (storage ? " storage" : " no storage"));
+      RenderSettings settings = smallSettings();
+      settings.backBufferFormat = format;
+      settings.storageBackBuffer = storage;
+      ProbeEffect probe;
+      probe.writeOutputs = false;
+      render(scene, settings, 1, {&probe});
+      ASSERT_EQ(probe.seen.size(), 1u);
+      const VkImageUsageFlags usage = probe.seen[0].color.usage;
+      EXPECT_NE(usage & VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, 0u);
+      EXPECT_EQ((usage & VK_IMAGE_USAGE_STORAGE_BIT) != 0, storage && storageFormat);
+    }
+  }
+}
+
 TEST_F(HostStub, ShadowMatricesFollowTheDocumentedConventions) {
   ProbeEffect probe;
   probe.writeOutputs = false;

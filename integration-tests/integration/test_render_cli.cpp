@@ -20,6 +20,16 @@ int run(std::vector<std::string> args) {
   return samples::runTyndallRender(static_cast<int>(argv.size()), argv.data());
 }
 
+// Parses without rendering; a failure is reported with its reason.
+bool parse(std::vector<const char*> args, samples::RenderOptions& options) {
+  args.insert(args.begin(), "tyndall-render");
+  bool help = false;
+  std::string error;
+  const bool ok = samples::parseCommandLine(static_cast<int>(args.size()), args.data(), options, help, error);
+  EXPECT_TRUE(ok) << error;
+  return ok;
+}
+
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("tyndall-cli-" + name);
   fs::remove_all(dir);
@@ -51,6 +61,15 @@ TEST(RenderCli, WritesEveryOutput) {
   EXPECT_EQ(timings["technique"], "reference");
   EXPECT_GT(timings["passMilliseconds"]["reference_scattering"].get<double>(), 0.0);
   EXPECT_GT(timings["totalMilliseconds"].get<double>(), 0.0);
+  // Which composite ran and the frame's command counts: the plugin decides them, the JSON reports them.
+  ASSERT_TRUE(timings.contains("composite"));
+  ASSERT_TRUE(timings["composite"].is_string());
+  const std::string composite = timings["composite"].get<std::string>();
+  EXPECT_TRUE(composite == "fragment" || composite == "compute") << composite;
+  ASSERT_TRUE(timings.contains("dispatches"));
+  EXPECT_TRUE(timings["dispatches"].is_number_unsigned());
+  ASSERT_TRUE(timings.contains("barriers"));
+  EXPECT_TRUE(timings["barriers"].is_number_unsigned());
 }
 
 TEST(RenderCli, BadInputFailsAndWritesNothing) {
@@ -87,14 +106,6 @@ TEST(RenderCli, BadInputFailsAndWritesNothing) {
 
 // --pipelines picks when the context compiles (RenderOptions::pipelineCreation); at-create without it.
 TEST(RenderCli, PipelinesOption) {
-  auto parse = [](std::vector<const char*> args, samples::RenderOptions& options) {
-    args.insert(args.begin(), "tyndall-render");
-    bool help = false;
-    std::string error;
-    const bool ok = samples::parseCommandLine(static_cast<int>(args.size()), args.data(), options, help, error);
-    EXPECT_TRUE(ok) << error;
-    return ok;
-  };
   samples::RenderOptions defaults, lazy, eager;
   ASSERT_TRUE(parse({"scene.json"}, defaults));
   EXPECT_EQ(defaults.pipelineCreation, PipelineCreation::AtCreate);
@@ -102,6 +113,17 @@ TEST(RenderCli, PipelinesOption) {
   EXPECT_EQ(lazy.pipelineCreation, PipelineCreation::OnFirstUse);
   ASSERT_TRUE(parse({"scene.json", "--pipelines", "on-first-use", "--pipelines", "at-create"}, eager));
   EXPECT_EQ(eager.pipelineCreation, PipelineCreation::AtCreate);
+}
+
+// --no-storage-back-buffer reaches the host's settings; without it the back buffer may take STORAGE.
+TEST(RenderCli, NoStorageBackBufferOption) {
+  samples::RenderOptions defaults, noStorage;
+  ASSERT_TRUE(parse({"scene.json"}, defaults));
+  EXPECT_TRUE(defaults.storageBackBuffer);
+  EXPECT_TRUE(samples::renderSettingsFor(defaults, false).storageBackBuffer);
+  ASSERT_TRUE(parse({"scene.json", "--no-storage-back-buffer"}, noStorage));
+  EXPECT_FALSE(noStorage.storageBackBuffer);
+  EXPECT_FALSE(samples::renderSettingsFor(noStorage, false).storageBackBuffer);
 }
 
 }  // namespace

@@ -301,5 +301,78 @@ TEST(BenchReport, TheProfilesAsTheyRunAreTheTablesRows) {
   EXPECT_EQ(highAsItRuns(context), "epipolar challenger");
 }
 
+// × floor is against the floor of the composite's kind; a compute composite whose floor was not
+// measured (no STORAGE back buffer, or the device cannot write it) falls back to the fragment floor.
+TEST(BenchFloor, TheRatioIsAgainstTheFloorOfTheCompositesKind) {
+  Row r = row("a", "epipolar", "x", 6.0, 100.0, 0.01);
+  r.floorMilliseconds = 2.0;
+  r.computeFloorMilliseconds = 1.5;
+  r.composite = "fragment";
+  EXPECT_DOUBLE_EQ(compositeFloorMilliseconds(r), 2.0);
+  r.composite = "compute";
+  EXPECT_DOUBLE_EQ(compositeFloorMilliseconds(r), 1.5);
+  r.computeFloorMilliseconds = 0.0;
+  r.computeFloorNote = "compute floor not measured: the back buffer has no STORAGE usage";
+  EXPECT_DOUBLE_EQ(compositeFloorMilliseconds(r), 2.0);
+}
+
+// results.json keeps both floors, the composite and the command counts; a file written before the
+// rows had them still loads, with the defaults.
+TEST(BenchReport, ResultsKeepTheFloorsTheCompositeAndTheCountsAndOldFilesLoad) {
+  Row r = row("a", "epipolar", "x", 6.0, 100.0, 0.01);
+  r.light = "directional";
+  r.floorMilliseconds = 2.0;
+  r.computeFloorMilliseconds = 1.5;
+  r.composite = "compute";
+  r.timeRatioToFloor = 4.0;
+  r.dispatches = 17;
+  r.barriers = 9;
+  Row skipped = row("a", "prefiltered", "y", 0.0, 100.0, 0.0);
+  skipped.light = "directional";
+  skipped.measured = false;
+  skipped.computeFloorNote = "compute floor not measured: the back buffer has no STORAGE usage";
+  ReportContext context;
+  context.chooseWidth = 64;
+  context.chooseHeight = 36;
+  context.chooseShadowMap = 256;
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tyndall-test-bench-floors";
+  std::string error;
+  ASSERT_TRUE(writeReports({r, skipped}, context, dir.string(), error)) << error;
+
+  std::vector<Row> read;
+  ReportContext readContext;
+  ASSERT_TRUE(readResults((dir / "results.json").string(), read, readContext, error)) << error;
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_DOUBLE_EQ(read[0].floorMilliseconds, 2.0);
+  EXPECT_DOUBLE_EQ(read[0].computeFloorMilliseconds, 1.5);
+  EXPECT_EQ(read[0].composite, "compute");
+  EXPECT_EQ(read[0].dispatches, 17u);
+  EXPECT_EQ(read[0].barriers, 9u);
+  EXPECT_EQ(read[1].computeFloorNote, skipped.computeFloorNote);
+
+  // The same file without the new keys, as earlier runs wrote it.
+  nlohmann::json old;
+  {
+    std::ifstream in(dir / "results.json");
+    old = nlohmann::json::parse(in);
+  }
+  for (nlohmann::json& j : old.at("rows")) {
+    for (const char* key : {"computeFloorMilliseconds", "computeFloorNote", "composite", "dispatches", "barriers"}) {
+      ASSERT_EQ(j.erase(key), 1u) << key;
+    }
+  }
+  std::ofstream(dir / "old.json") << old.dump();
+  read.clear();
+  ASSERT_TRUE(readResults((dir / "old.json").string(), read, readContext, error)) << error;
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(read.size(), 2u);
+  EXPECT_DOUBLE_EQ(read[0].floorMilliseconds, 2.0);
+  EXPECT_DOUBLE_EQ(read[0].computeFloorMilliseconds, 0.0);
+  EXPECT_EQ(read[0].computeFloorNote, "");
+  EXPECT_EQ(read[0].composite, "none");
+  EXPECT_EQ(read[0].dispatches, 0u);
+  EXPECT_EQ(read[0].barriers, 0u);
+}
+
 }  // namespace
 }  // namespace tyndall::samples::bench

@@ -1,7 +1,8 @@
-// The full-screen floor of tyndall-bench: the cheapest post-process that reads depth and colour and
-// writes colour (shaders/floor.frag), inserted into the stub host's stack like Tyndall and timed
-// with its own timestamps. A technique's time over this pass's time says how far it is from what
-// any post-process costs at that size on that device.
+// The full-screen floors of tyndall-bench: the cheapest post-process that reads depth and colour and
+// writes colour, as a fragment pass blending into the back buffer (shaders/floor.frag) or as a compute
+// pass writing it in place (shaders/floor.comp), inserted into the stub host's stack like Tyndall and
+// timed with its own timestamps. A technique's time over the floor of its composite's kind says how
+// far it is from what any post-process of that kind costs at that size on that device.
 #pragma once
 
 #include <memory>
@@ -12,9 +13,19 @@
 
 namespace tyndall::samples::bench {
 
+/// How the floor writes the back buffer, as Tyndall's composite does (Stats::composite).
+enum class FloorKind { Fragment, Compute };
+
+/// Why the compute floor cannot run on `device` with back buffers of `settings`; empty when it can.
+/// It needs a back buffer with STORAGE usage (RenderSettings::storageBackBuffer and a format with
+/// storage-image support) and shaderStorageImageWriteWithoutFormat.
+std::string computeFloorUnavailable(const host::Device& device, const host::RenderSettings& settings);
+
 class FloorPass final : public host::PostProcessEffect {
  public:
-  static std::unique_ptr<FloorPass> create(host::Device& device, std::string& error);
+  /// The compute kind fails in `record` for a back buffer without STORAGE usage
+  /// (computeFloorUnavailable says beforehand).
+  static std::unique_ptr<FloorPass> create(host::Device& device, FloorKind kind, std::string& error);
   ~FloorPass() override;
   FloorPass(const FloorPass&) = delete;
   FloorPass& operator=(const FloorPass&) = delete;

@@ -17,6 +17,7 @@ const char* const kUsage =
     "usage: tyndall-bench [--scenes NAME|FILE.json,...] [--sizes WxH,...] [--shadow-maps N,...]\n"
     "         [--grid default|full|quick|none] [--config TECHNIQUE[:KEY=VALUE,...]]... [--frames N] [--warm-up N]\n"
     "         [--orbit-frames N] [--orbit-degrees D] [--choose-at WxH/N] [--out DIR] [--sequential] [--validation]\n"
+    "         [--no-storage-back-buffer]\n"
     "       tyndall-bench --from RESULTS.json [--choose-at WxH/N] [--out DIR]\n"
     "  --scenes: names in samples/scenes/ or scene files (default: pillars,fence,forest,window-room,spot-lamp,\n"
     "            stained-glass)\n"
@@ -25,12 +26,14 @@ const char* const kUsage =
     "          or prefiltered:KEY=VALUE,... in tyndall-render's --epipolar / --prefiltered syntax\n"
     "  --frames: timed frames per configuration, median reported (default 20); --warm-up: untimed (3)\n"
     "  --sequential: each configuration's frames in a row, one context alive at a time (default: interleaved,\n"
-    "                one frame of every configuration, the Reference and the floor pass per round)\n"
+    "                one frame of every configuration, the Reference and the floor passes per round)\n"
     "  --orbit-frames / --orbit-degrees: the orbit for temporal stability (6 frames, 0.25 degrees each)\n"
     "  --choose-at: the size and shadow map the profiles are chosen at (default: the first of each)\n"
     "  --out: the output directory (default out/bench): results.csv/.json/.md, pareto.json (the plots'\n"
     "         data: scripts/plot-pareto.py DIR/pareto.json DIR draws pareto-*.svg/.png), choice.json, tradeoffs.md\n"
     "  --validation: Vulkan validation on; any message fails the run\n"
+    "  --no-storage-back-buffer: back buffers without STORAGE usage: Tyndall composites with a fragment pass\n"
+    "         and the compute floor is not measured\n"
     "  --from: write the reports again from an earlier run's results.json, measuring nothing\n";
 
 std::vector<std::string> split(const std::string& text) {
@@ -87,6 +90,10 @@ int main(int argc, char** argv) {
     }
     if (arg == "--sequential") {
       options.interleaved = false;
+      continue;
+    }
+    if (arg == "--no-storage-back-buffer") {
+      options.storageBackBuffer = false;
       continue;
     }
     if (i + 1 >= argc) return fail(arg + " needs a value (--help)");

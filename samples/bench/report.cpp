@@ -44,7 +44,8 @@ std::string csv(const std::string& text) {
 std::string rowsCsv(const std::vector<Row>& rows) {
   std::string out =
       "scene,light,width,height,shadow_map,technique,parameters,technique_used,measured,note,total_ms,reference_ms,floor_ms,"
-      "time_ratio_to_reference,time_ratio_to_floor,device_memory_bytes,relative_rmse,relative_p99,relative_max,"
+      "compute_floor_ms,compute_floor_note,composite,time_ratio_to_reference,time_ratio_to_floor,dispatches,barriers,"
+      "device_memory_bytes,relative_rmse,relative_p99,relative_max,"
       "non_finite,temporal_change,temporal_ratio,marched_samples,fixed_up_pixel_fraction,pass_ms\n";
   for (const Row& r : rows) {
     std::string passes;
@@ -56,13 +57,20 @@ std::string rowsCsv(const std::vector<Row>& rows) {
            std::to_string(r.shadowMap) + "," + r.technique + "," + csv(r.parameters) + "," + r.techniqueUsed + "," +
            (r.measured ? "1" : "0") + "," + csv(r.note) + "," + format("%.6g", r.totalMilliseconds) + "," +
            format("%.6g", r.referenceMilliseconds) + "," + format("%.6g", r.floorMilliseconds) + "," +
+           format("%.6g", r.computeFloorMilliseconds) + "," + csv(r.computeFloorNote) + "," + r.composite + "," +
            format("%.6g", r.timeRatioToReference) + "," + format("%.6g", r.timeRatioToFloor) + "," +
-           std::to_string(r.deviceMemoryBytes) + "," + format("%.6g", r.relativeRmse) + "," +
+           std::to_string(r.dispatches) + "," + std::to_string(r.barriers) + "," + std::to_string(r.deviceMemoryBytes) + "," + format("%.6g", r.relativeRmse) + "," +
            format("%.6g", r.relativeP99) + "," + format("%.6g", r.relativeMax) + "," + std::to_string(r.nonFinite) +
            "," + format("%.6g", r.temporalChange) + "," + format("%.6g", r.temporalRatio) + "," +
            std::to_string(r.marchedSamples) + "," + format("%.6g", r.fixedUpPixelFraction) + "," + csv(passes) + "\n";
   }
   return out;
+}
+
+// The compute floor's time, or why it was not measured (rows from files written before it: a dash).
+std::string computeFloorCell(const Row& r) {
+  if (r.computeFloorMilliseconds > 0.0) return format("%.3f", r.computeFloorMilliseconds);
+  return r.computeFloorNote.empty() ? "—" : "— (" + r.computeFloorNote + ")";
 }
 
 nlohmann::ordered_json rowJson(const Row& r) {
@@ -85,8 +93,13 @@ nlohmann::ordered_json rowJson(const Row& r) {
   j["totalMilliseconds"] = r.totalMilliseconds;
   j["referenceMilliseconds"] = r.referenceMilliseconds;
   j["floorMilliseconds"] = r.floorMilliseconds;
+  j["computeFloorMilliseconds"] = r.computeFloorMilliseconds;
+  j["computeFloorNote"] = r.computeFloorNote;
+  j["composite"] = r.composite;
   j["timeRatioToReference"] = r.timeRatioToReference;
   j["timeRatioToFloor"] = r.timeRatioToFloor;
+  j["dispatches"] = r.dispatches;
+  j["barriers"] = r.barriers;
   j["deviceMemoryBytes"] = r.deviceMemoryBytes;
   j["relativeRmse"] = r.relativeRmse;
   j["relativeP99"] = r.relativeP99;
@@ -101,17 +114,20 @@ nlohmann::ordered_json rowJson(const Row& r) {
 
 std::string rowsMarkdown(const std::vector<Row>& rows) {
   std::string out =
-      "| scene | size | map | technique | parameters | ms | speedup | × floor | relative RMSE | p99 | max | NaN/Inf | "
-      "temporal | memory MiB |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "| scene | size | map | technique | parameters | ms | speedup | composite | × floor | floor ms | compute floor ms | "
+      "dispatches | barriers | relative RMSE | p99 | max | NaN/Inf | temporal | memory MiB |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     out += "| " + r.scene + " | " + std::to_string(r.width) + "×" + std::to_string(r.height) + " | " +
            std::to_string(r.shadowMap) + "² | " + r.technique + " | `" + r.parameters + "` | ";
     if (!r.measured) {
-      out += r.note + " |||||||||\n";
+      out += r.note + " ||||||||||||||\n";
       continue;
     }
-    out += format("%.3f", r.totalMilliseconds) + " | " + speedup(r.timeRatioToReference) + " | " +
-           format("%.2f", r.timeRatioToFloor) + " | " + percent(r.relativeRmse) + " | " + percent(r.relativeP99) +
+    out += format("%.3f", r.totalMilliseconds) + " | " + speedup(r.timeRatioToReference) + " | " + r.composite +
+           " | " + format("%.2f", r.timeRatioToFloor) + " | " + format("%.3f", r.floorMilliseconds) + " | " +
+           computeFloorCell(r) + " | " + std::to_string(r.dispatches) + " | " + std::to_string(r.barriers) + " | " +
+           percent(r.relativeRmse) + " | " + percent(r.relativeP99) +
            " | " + percent(r.relativeMax) + " | " + std::to_string(r.nonFinite) + " | " +
            format("%.2f", r.temporalRatio) + " | " + format("%.1f", static_cast<double>(r.deviceMemoryBytes) / 1048576.0) +
            " |\n";
@@ -194,7 +210,7 @@ std::string goalsText(const ProfileGoal& goal, const GoalsMet& met) {
 // files written before the bench recorded it).
 std::string scheduleText(const std::string& schedule) {
   if (schedule == "interleaved") {
-    return ", interleaved: every round renders one frame of the floor pass, the Reference and every "
+    return ", interleaved: every round renders one frame of the floor passes, the Reference and every "
            "configuration in turn (the first rotating), each frame alone on the device, so that the machine's "
            "other work slows them alike";
   }
@@ -427,6 +443,13 @@ bool readResults(const std::string& path, std::vector<Row>& rows, ReportContext&
       r.totalMilliseconds = j.at("totalMilliseconds").get<double>();
       r.referenceMilliseconds = j.at("referenceMilliseconds").get<double>();
       r.floorMilliseconds = j.at("floorMilliseconds").get<double>();
+      // Files written before the compute floor and the command counts have none: the defaults.
+      const Row unset;
+      r.computeFloorMilliseconds = j.value("computeFloorMilliseconds", unset.computeFloorMilliseconds);
+      r.computeFloorNote = j.value("computeFloorNote", unset.computeFloorNote);
+      r.composite = j.value("composite", unset.composite);
+      r.dispatches = j.value("dispatches", unset.dispatches);
+      r.barriers = j.value("barriers", unset.barriers);
       r.timeRatioToReference = j.at("timeRatioToReference").get<double>();
       r.timeRatioToFloor = j.at("timeRatioToFloor").get<double>();
       r.deviceMemoryBytes = j.at("deviceMemoryBytes").get<std::uint64_t>();
@@ -645,8 +668,9 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   }
   if (!writeFileWhole((dir / "choice.json").string(), choiceJson.dump(2) + "\n", error)) return false;
 
-  std::string perScene = "| profile | scene | lights | parameters | ms | speedup | × floor | relative RMSE | p99 | temporal |\n"
-                         "|---|---|---|---|---|---|---|---|---|---|\n";
+  std::string perScene =
+      "| profile | scene | lights | parameters | ms | speedup | composite | × floor | dispatches | barriers | "
+      "relative RMSE | p99 | temporal |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   std::string profileText =
       "| profile | scenes | speedup over the Reference | time / floor | relative RMSE | worst scene | time spread | goal |\n"
       "|---|---|---|---|---|---|---|---|\n";
@@ -666,7 +690,8 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
           }
           perScene += "| " + goal.name() + " | " + r.scene + " | " + to_string(byClass.lights) + " | `" + r.parameters +
                       "` | " + format("%.3f", r.totalMilliseconds) + " | " + speedup(r.timeRatioToReference) + " | " +
-                      format("%.2f", r.timeRatioToFloor) + " | " + percent(r.relativeRmse) + " | " +
+                      r.composite + " | " + format("%.2f", r.timeRatioToFloor) + " | " + std::to_string(r.dispatches) +
+                      " | " + std::to_string(r.barriers) + " | " + percent(r.relativeRmse) + " | " +
                       percent(r.relativeP99) + " | " + format("%.2f", r.temporalRatio) + " |\n";
           ratio.push_back(r.timeRatioToReference);
           floorRatio.push_back(r.timeRatioToFloor);
@@ -698,12 +723,15 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   doc += "# Trade-offs\n\n";
   doc += "Generated by `scripts/measure.sh tradeoffs`, which ran\n\n```\n" + context.commandLine + "\n```\n\n";
   doc += "on **" + context.device + "**. Every configuration (a technique and its parameters) ran on every scene at "
-         "every size after the Reference and the full-screen floor pass (one pass that reads depth and colour and "
-         "writes colour, `samples/bench/shaders/floor.frag`), in the same run. Times are the median GPU time "
+         "every size after the Reference and the full-screen floor passes (one pass that reads depth and colour and "
+         "writes colour: a fragment pass blending into the back buffer, `samples/bench/shaders/floor.frag`, and, where "
+         "the back buffer has STORAGE usage, a compute pass writing it in place, `floor.comp`), in the same run. Times are the median GPU time "
          "(Tyndall's timestamps, first pass start to last pass end; frames timed without copying L_in to the AOV, which one more frame does for the errors) of " + std::to_string(context.frames) +
          " frames after " + std::to_string(context.warmUpFrames) + " warm-up frames" + scheduleText(context.schedule) +
          "; speedup is the Reference's "
-         "time over the configuration's, `× floor` its time over the floor pass's. Errors are L_in against the "
+         "time over the configuration's, `× floor` its time over the floor of the kind its composite ran (`composite`: "
+         "`compute` or `fragment`, `Stats::composite`); `dispatches` and `barriers` are the compute dispatches and "
+         "pipeline barriers Tyndall recorded in a frame (`Stats`). Errors are L_in against the "
          "Reference's (relative RMSE = RMSE / mean |reference|; p99 and max of |error| / mean |reference|). "
          "`temporal` is the mean frame-to-frame change of L_in over " + std::to_string(context.orbitFrames) +
          " frames of a camera orbit (" + format("%g", context.orbitDegreesPerFrame) +

@@ -144,7 +144,7 @@ host::Camera orbit(const host::Camera& camera, double degrees) {
   return out;
 }
 
-// What one configuration (or the floor pass) produced on one scene.
+// What one configuration (or a floor pass) produced on one scene.
 struct Measurement {
   std::vector<double> totals;
   std::map<std::string, std::vector<double>> passes;
@@ -153,12 +153,13 @@ struct Measurement {
   double temporalChange = 0.0;    // mean |ΔL_in| per orbit frame (absolute)
 };
 
-// One thing measured in a group: the floor pass (no configuration), the Reference or a
+// One thing measured in a group: a floor pass (no configuration), the Reference or a
 // configuration, each with its own renderer and effect (a Tyndall context per configuration: its
 // memory and pipelines are the configuration's alone), open from its first frame to its last.
 struct Subject {
   std::string name;
   std::optional<Configuration> configuration;
+  FloorKind floorKind = FloorKind::Fragment;  // without a configuration: which floor
   std::unique_ptr<FloorPass> floor;
   std::unique_ptr<TyndallEffect> tyndall;
   std::unique_ptr<host::Renderer> renderer;
@@ -172,7 +173,7 @@ class Sweep {
   bool run(std::vector<Row>& rows, std::string& error) {
     // Progress in frames of every subject, the readbacks and orbits counted as one frame each.
     const std::size_t groups = options_.scenes.size() * options_.sizes.size() * options_.shadowMaps.size();
-    unitsTotal_ = groups * (options_.configurations.size() + 2) * (options_.warmUpFrames + options_.frames + 1);
+    unitsTotal_ = groups * (options_.configurations.size() + 3) * (options_.warmUpFrames + options_.frames + 1);
     start_ = std::chrono::steady_clock::now();
     for (const std::string& path : options_.scenes) {
       host::SceneLoadResult loaded = host::loadScene(path);
@@ -199,7 +200,9 @@ class Sweep {
     render.height = height;
     render.shadowMapSize = map;
     render.pipelineCreation = PipelineCreation::OnFirstUse;  // a context per configuration compiles only its own
+    render.storageBackBuffer = options_.storageBackBuffer;
     const host::RenderSettings settings = renderSettingsFor(render, true);
+    const std::string computeFloorNote = computeFloorUnavailable(device_, settings);
     const std::string where = stem + " " + std::to_string(width) + "x" + std::to_string(height) + " " +
                               std::to_string(map) + "²";
 
@@ -211,13 +214,23 @@ class Sweep {
     base.height = height;
     base.shadowMap = map;
 
-    // Subject 0: the floor, the cheapest post-process at this size; 1: the Reference; then the
+    // Subject 0: the fragment floor, the cheapest fragment post-process at this size; 1: the
+    // Reference; then the compute floor where the back buffer allows it (computeFloor); then the
     // configurations this scene's light allows (`configurations[k]` is subject measured[k], or
     // none when skipped).
     std::vector<Subject> subjects(2);
     subjects[0].name = "floor pass";
     subjects[1].name = referenceConfig.name();
     subjects[1].configuration = referenceConfig;
+    std::optional<std::size_t> computeFloor;
+    if (computeFloorNote.empty()) {
+      computeFloor = subjects.size();
+      subjects.emplace_back();
+      subjects.back().name = "compute floor pass";
+      subjects.back().floorKind = FloorKind::Compute;
+    } else {
+      unitsDone_ += options_.warmUpFrames + options_.frames + 1;
+    }
     std::vector<std::optional<std::size_t>> measured;
     for (const Configuration& config : options_.configurations) {
       if (config.technique == Technique::Prefiltered && scene.light.type != host::LightType::Directional) {
@@ -256,16 +269,23 @@ class Sweep {
       }
     }
 
-    const double floorMs = median(subjects[0].run.totals);
-    progress(where + " floor pass: " + formatMs(floorMs));
+    base.floorMilliseconds = median(subjects[0].run.totals);
+    progress(where + " floor pass: " + formatMs(base.floorMilliseconds));
+    if (computeFloor) {
+      base.computeFloorMilliseconds = median(subjects[*computeFloor].run.totals);
+      progress(where + " compute floor pass: " + formatMs(base.computeFloorMilliseconds));
+    } else {
+      base.computeFloorNote = "compute floor not measured: " + computeFloorNote;
+      progress(where + " " + base.computeFloorNote);
+    }
     const Measurement& reference = subjects[1].run;
-    const double referenceMs = median(reference.totals);
+    base.referenceMilliseconds = median(reference.totals);
     const ErrorStats referenceScale = compareRgb(reference.scattering, reference.scattering);
     const double meanReference = referenceScale.meanReference;
     const double referenceChange = meanReference > 0.0 ? reference.temporalChange / meanReference : 0.0;
     {
       Row row = base;
-      fill(row, referenceConfig, reference, floorMs, referenceMs);
+      fill(row, referenceConfig, reference);
       row.temporalChange = referenceChange;
       row.temporalRatio = 1.0;
       rows.push_back(row);
@@ -278,8 +298,6 @@ class Sweep {
       row.configuration = config.name();
       row.technique = config.techniqueName();
       row.parameters = config.parameters();
-      row.referenceMilliseconds = referenceMs;
-      row.floorMilliseconds = floorMs;
       if (!measured[k]) {
         row.note = "prefiltered: directional lights only (a profile runs the epipolar technique for this light)";
         rows.push_back(row);
@@ -287,7 +305,7 @@ class Sweep {
         continue;
       }
       const Measurement& run = subjects[*measured[k]].run;
-      fill(row, config, run, floorMs, referenceMs);
+      fill(row, config, run);
       const ErrorStats e = compareRgb(run.scattering, reference.scattering);
       row.relativeRmse = e.relativeRmse;
       row.relativeP99 = e.relativeP99;
@@ -304,7 +322,7 @@ class Sweep {
   // Creates the subject's effect (the floor pass or a Tyndall context) and its renderer.
   bool open(const host::Scene& scene, const host::RenderSettings& settings, Subject& subject, std::string& error) {
     if (!subject.configuration) {
-      subject.floor = FloorPass::create(device_, error);
+      subject.floor = FloorPass::create(device_, subject.floorKind, error);
       if (!subject.floor) return false;
     } else {
       const Configuration& config = *subject.configuration;
@@ -423,7 +441,8 @@ class Sweep {
     return checkValidation(error);
   }
 
-  void fill(Row& row, const Configuration& config, const Measurement& run, double floorMs, double referenceMs) const {
+  // The row's measurements from `run`; its floors and the Reference's time are set already.
+  static void fill(Row& row, const Configuration& config, const Measurement& run) {
     row.configuration = config.name();
     row.technique = config.techniqueName();
     row.parameters = config.parameters();
@@ -432,10 +451,13 @@ class Sweep {
     row.passOrder = run.stats.passesRecorded;
     for (const auto& [name, values] : run.passes) row.passMilliseconds[name] = median(values);
     row.totalMilliseconds = median(run.totals);
-    row.referenceMilliseconds = referenceMs;
-    row.floorMilliseconds = floorMs;
-    row.timeRatioToReference = referenceMs > 0.0 ? row.totalMilliseconds / referenceMs : 0.0;
+    row.timeRatioToReference =
+        row.referenceMilliseconds > 0.0 ? row.totalMilliseconds / row.referenceMilliseconds : 0.0;
+    row.composite = to_string(run.stats.composite);
+    const double floorMs = compositeFloorMilliseconds(row);
     row.timeRatioToFloor = floorMs > 0.0 ? row.totalMilliseconds / floorMs : 0.0;
+    row.dispatches = run.stats.dispatches;
+    row.barriers = run.stats.barriers;
     row.deviceMemoryBytes = run.stats.deviceMemoryBytes;
     if (run.stats.epipolarCounts) {
       row.marchedSamples = run.stats.epipolarCounts->marchedSamples;
@@ -484,6 +506,13 @@ class Sweep {
 };
 
 }  // namespace
+
+double compositeFloorMilliseconds(const Row& row) {
+  // Against what the cheapest post-process of the same kind costs: a compute composite skips the
+  // rasteriser and the blender, so its floor differs from the fragment one.
+  const bool compute = row.composite == to_string(CompositePath::Compute) && row.computeFloorMilliseconds > 0.0;
+  return compute ? row.computeFloorMilliseconds : row.floorMilliseconds;
+}
 
 bool runSweep(const SweepOptions& options, std::vector<Row>& rows, std::string& deviceName, std::string& error) {
   host::DeviceOptions deviceOptions;

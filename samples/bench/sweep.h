@@ -1,5 +1,5 @@
 // tyndall-bench's sweep: scenes × output sizes × shadow-map sizes × configurations (a technique and
-// its parameters), each measured against the Reference and against the full-screen floor pass in
+// its parameters), each measured against the Reference and against the full-screen floor passes in
 // the same run (issue "Quality profiles from a measured speed–accuracy trade").
 #pragma once
 
@@ -54,7 +54,7 @@ struct SweepOptions {
   std::vector<Configuration> configurations;  ///< the Reference is always measured first
   std::uint32_t warmUpFrames = 3;     ///< rendered and not timed (pipelines, caches)
   std::uint32_t frames = 20;          ///< timed frames; the median is reported
-  /// Frames of one scene and size interleaved: each round renders one frame of the floor pass, the
+  /// Frames of one scene and size interleaved: each round renders one frame of the floor passes, the
   /// Reference and every configuration (the first rotating), so that the machine's other work slows
   /// them alike and their ratios hold; all their renderers and contexts are alive at once. False:
   /// one subject's frames after another's, one renderer and context alive at a time (for sizes
@@ -63,6 +63,9 @@ struct SweepOptions {
   std::uint32_t orbitFrames = 6;      ///< frames of the slow orbit for the temporal stability
   double orbitDegreesPerFrame = 0.25; ///< camera rotation about its target's vertical axis per frame
   bool validation = false;            ///< fail on any validation message
+  /// The back buffers get STORAGE usage where their format allows (RenderSettings::storageBackBuffer),
+  /// so Tyndall may composite with compute and the compute floor is measured; false: neither.
+  bool storageBackBuffer = true;
   std::function<void(const std::string&)> progress;  ///< one line per measured configuration
   /// Called with every row so far after each scene and size, so a long sweep that is stopped
   /// keeps what it measured.
@@ -84,9 +87,20 @@ struct Row {
   std::vector<std::string> passOrder;              ///< recording order of the last frame
   double totalMilliseconds = 0.0;      ///< median over the timed frames (Tyndall's first to last stamp)
   double referenceMilliseconds = 0.0;  ///< the Reference's median, same scene and sizes
-  double floorMilliseconds = 0.0;      ///< the floor pass's median, same scene and sizes
+  double floorMilliseconds = 0.0;      ///< the fragment floor pass's median, same scene and sizes
+  /// The compute floor pass's median, same scene and sizes; 0 when it was not measured
+  /// (`computeFloorNote` says why).
+  double computeFloorMilliseconds = 0.0;
+  std::string computeFloorNote;        ///< empty when the compute floor was measured
+  /// to_string(Stats::composite): "fragment" or "compute", the composite this configuration ran
+  /// ("none" in rows not measured, and in files written before rows recorded it).
+  std::string composite = "none";
   double timeRatioToReference = 0.0;   ///< total / Reference (smaller is faster)
-  double timeRatioToFloor = 0.0;       ///< total / floor
+  /// total / the floor of the composite's kind: the compute floor when `composite` is "compute"
+  /// and the compute floor was measured, else the fragment floor.
+  double timeRatioToFloor = 0.0;
+  std::uint32_t dispatches = 0;        ///< Stats::dispatches of the last timed frame
+  std::uint32_t barriers = 0;          ///< Stats::barriers of the last timed frame
   std::uint64_t deviceMemoryBytes = 0; ///< Stats::deviceMemoryBytes of a context that ran only this
   double relativeRmse = 0.0, relativeP99 = 0.0, relativeMax = 0.0;  ///< L_in against the Reference
   std::size_t nonFinite = 0;
@@ -95,6 +109,10 @@ struct Row {
   std::uint64_t marchedSamples = 0;
   double fixedUpPixelFraction = 0.0;
 };
+
+/// The floor `row.timeRatioToFloor` is against: the compute floor when the row's composite was
+/// "compute" and the compute floor was measured, else the fragment floor (milliseconds).
+double compositeFloorMilliseconds(const Row& row);
 
 /// Runs the sweep. False with `error` when something could not run (a scene does not load, a
 /// frame fails, validation spoke); the rows measured so far stay in `rows`.

@@ -47,10 +47,12 @@ std::string usage() {
          "         [--technique reference|epipolar|prefiltered] [--width W] [--height H] [--shadow-map-size N]\n"
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
-         "         [--reverse-z] [--infinite-far] [--validation] [--no-effect]\n"
+         "         [--reverse-z] [--infinite-far] [--validation] [--no-effect] [--no-storage-back-buffer]\n"
          "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--prefiltered KEY=VALUE[,KEY=VALUE...]]\n"
          "         [--debug-view samples|fixup FILE.png] [--march-threads N] [--pipelines at-create|on-first-use]\n"
          "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
+         "  --no-storage-back-buffer: create the back buffer without STORAGE usage, so Tyndall composites\n"
+         "    with a fragment pass instead of a compute pass writing the back buffer in place\n"
          "  --pipelines: compile every technique's pipelines when the context is created (at-create, the\n"
          "    default: no frame compiles one) or each technique's in the first frame that runs it\n"
          "    (on-first-use: a faster start for scripts that render one technique; GPU timings unchanged,\n"
@@ -172,6 +174,8 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       options.prefiltered = settings;
     } else if (arg == "--no-effect") {
       options.noEffect = true;
+    } else if (arg == "--no-storage-back-buffer") {
+      options.storageBackBuffer = false;
     } else if (!arg.empty() && arg[0] == '-') {
       error = "unknown option " + arg;
       return false;
@@ -200,6 +204,7 @@ host::RenderSettings renderSettingsFor(const RenderOptions& options, bool wantAo
                        options.debugView != DebugView::None;
   settings.backBufferFormat = options.backBufferFormat;
   settings.framesInFlight = options.framesInFlight;
+  settings.storageBackBuffer = options.storageBackBuffer;
   return settings;
 }
 
@@ -302,6 +307,9 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["framesTimed"] = result.timings.size();
   json["timestampsSupported"] = result.stats.timestampsSupported;
   json["passesRecorded"] = result.stats.passesRecorded;
+  json["composite"] = to_string(result.stats.composite);
+  json["dispatches"] = result.stats.dispatches;
+  json["barriers"] = result.stats.barriers;
   nlohmann::ordered_json passes = nlohmann::ordered_json::object();
   // In recording order of the last frame.
   for (const std::string& name : result.stats.passesRecorded) {

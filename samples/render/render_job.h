@@ -39,6 +39,9 @@ struct RenderOptions {
   DebugView debugView = DebugView::None;  ///< --debug-view samples|fixup FILE.png
   std::string debugViewPng;
   VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;  ///< not on the command line
+  /// --no-storage-back-buffer sets false: the back buffer lacks STORAGE usage, so Tyndall composites
+  /// with its fragment path (RenderSettings::storageBackBuffer).
+  bool storageBackBuffer = true;
   std::uint32_t framesInFlight = 2;                           ///< not on the command line
   /// --pipelines at-create|on-first-use: tyndall-render compiles every pipeline up front unless
   /// told otherwise; the tests, which create a context per render and use one or two techniques,

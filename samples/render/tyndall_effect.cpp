@@ -26,6 +26,7 @@ ImageRef toImageRef(const host::HostImage& image) {
   ref.format = image.format;
   ref.extent = image.extent;
   ref.layout = image.layout;
+  ref.usage = image.usage;  // 0 where the host does not report it; the back buffer's STORAGE bit picks the composite
   return ref;
 }
 

@@ -61,6 +61,9 @@ struct RenderSettings {
   /// R8G8B8A8/B8G8R8A8 UNORM or SRGB, A2B10G10R10_UNORM_PACK32.
   VkFormat backBufferFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
   bool aovImages = false;           ///< allocate the RGBA32F AOV images handed to effects (L_in, T, debug view)
+  /// Give the back buffer STORAGE usage when its format supports storage images (what engines do
+  /// for compute post-processes); false never adds it, so effects take their fragment path.
+  bool storageBackBuffer = true;
 };
 
 /// An image of the host as a post-process sees it (mirrors tyndall::ImageRef).
@@ -70,6 +73,7 @@ struct HostImage {
   VkFormat format = VK_FORMAT_UNDEFINED;
   VkExtent2D extent{};
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+  VkImageUsageFlags usage = 0;  ///< the usage the image was created with; 0: not reported (only the back buffer reports it)
 };
 
 struct HostShadowMap {
@@ -90,7 +94,7 @@ struct PostProcessInputs {
   const Scene* scene = nullptr;      ///< light and medium come from here
   std::vector<HostShadowMap> shadowMaps;  ///< 1 (directional, spot) or 6 (point)
   HostImage depth;                   ///< D32_SFLOAT, DEPTH_STENCIL_ATTACHMENT_OPTIMAL
-  HostImage color;                   ///< back buffer, COLOR_ATTACHMENT_OPTIMAL
+  HostImage color;                   ///< back buffer, COLOR_ATTACHMENT_OPTIMAL, with its usage
   HostImage aovScattering;           ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
   HostImage aovTransmittance;        ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
   HostImage aovDebug;                ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages (cleared to 0)

@@ -62,14 +62,20 @@ INSTANTIATE_TEST_SUITE_P(AnalyticScenes, ReferenceVsAnalytic,
                            return name;
                          });
 
-// out = in · T + L_in: the back buffer with the effect against the back buffer without it.
-TEST(Composite, BackBufferIsInTimesTransmittancePlusInScattering) {
+// out = in · T + L_in: the back buffer with the effect against the back buffer without it, on both
+// paths: compute (the back buffer a storage image) and the fragment blend (no STORAGE usage).
+class Composite : public ::testing::TestWithParam<bool> {};
+
+TEST_P(Composite, BackBufferIsInTimesTransmittancePlusInScattering) {
+  const bool storage = GetParam();
   const host::Scene scene = loadTestScene("analytic-mixed");
   samples::RenderOptions options = referenceOptions();
   options.width = 64;
   options.height = 36;
   options.shadowMapSize = 512;
+  options.storageBackBuffer = storage;
   const samples::RenderResult with = renderWithAovs(scene, options);
+  EXPECT_EQ(with.stats.composite, storage ? CompositePath::Compute : CompositePath::Fragment);
 
   host::RenderSettings settings;
   settings.width = options.width;
@@ -89,8 +95,8 @@ TEST(Composite, BackBufferIsInTimesTransmittancePlusInScattering) {
       expected.pixels[i + c] = in.pixels[i + c] * with.transmittance.pixels[i + c] + with.scattering.pixels[i + c];
     }
   }
-  // The back buffer is RGBA16F (11 significant bits): the blend's result is rounded once, so
-  // each value is within 2^-11 of the exact one, relative (checked with 2^-10).
+  // The back buffer is RGBA16F (11 significant bits): the blend's (or the compute pass's) result is
+  // rounded once, so each value is within 2^-11 of the exact one, relative (checked with 2^-10).
   ASSERT_EQ(with.color.pixels.size(), expected.pixels.size());
   std::size_t outside = 0;
   for (std::size_t i = 0; i < expected.pixels.size(); i += 4) {
@@ -105,6 +111,9 @@ TEST(Composite, BackBufferIsInTimesTransmittancePlusInScattering) {
   EXPECT_GT(compareRgb(in, expected).relativeRmse, 0.05);
   expectNoValidationMessages();
 }
+
+INSTANTIATE_TEST_SUITE_P(Paths, Composite, ::testing::Bool(),
+                         [](const auto& path) { return path.param ? "compute" : "fragment"; });
 
 }  // namespace
 }  // namespace tyndall::test

@@ -49,7 +49,10 @@ spot         The profiles against the Reference on the spot-light scenes and on 
              (spot-lamp stained-glass spot-fan spot-grille spot-lattice spot-foliage), SIZES
              (320x180 480x270), MAP (2048), PROFILES (high balanced performance), FRAMES (3),
              POINT (1; 0 leaves out the point-light variants, whose Reference is slow on lavapipe),
-             EPIPOLAR (--epipolar keys for every profile run, e.g. slice-contrast=0.3).
+             EPIPOLAR_HIGH, EPIPOLAR_BALANCED, EPIPOLAR_PERFORMANCE (a profile's run with these
+             --epipolar settings instead of its row: every key the row sets, plus the ones tried),
+             REFERENCE_FROM (an earlier SPOT_OUT with the same SIZES and MAP: its Reference renders
+             are used instead of rendering them again).
 reference    The Reference's GPU time per pass and wall-clock time per frame. Prints a table; writes
              REFERENCE_OUT (out/measure). SCENES (pillars), SIZES (640x360 1280x720), FRAMES (4).
 memory       Device memory a context holds per profile and size (Stats::deviceMemoryBytes after one
@@ -204,7 +207,7 @@ part_epipolar() {
 
 # spot: per spot scene (and its point-light variant), size and profile the error against the Reference.
 part_spot() {
-  local render compare out rows map frames scene file size w h light ref profile run doc
+  local render compare out rows map frames scene file size w h light ref profile run doc keys
   local default_scenes="spot-lamp stained-glass spot-fan spot-grille spot-lattice spot-foliage"
   render="$(program "$1" tyndall-render)"
   compare="$(program "$1" tyndall-compare)"
@@ -224,12 +227,19 @@ part_spot() {
       fi
       for size in ${SIZES:-320x180 480x270}; do
         w="$(width_of "$size")"; h="$(height_of "$size")"
-        ref="$out/$scene-$light-$size-reference"
-        "$render" --pipelines on-first-use "$file" --profile reference --width "$w" --height "$h" \
-          --shadow-map-size "$map" --frames 1 --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
+        if [ -n "${REFERENCE_FROM:-}" ]; then
+          ref="$REFERENCE_FROM/$scene-$light-$size-reference"
+          [ -f "$ref.exr" ] && [ -f "$ref.json" ] || { echo "no Reference render $ref.{exr,json}" >&2; exit 1; }
+        else
+          ref="$out/$scene-$light-$size-reference"
+          "$render" --pipelines on-first-use "$file" --profile reference --width "$w" --height "$h" \
+            --shadow-map-size "$map" --frames 1 --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
+        fi
         for profile in ${PROFILES:-high balanced performance}; do
           run="$out/$scene-$light-$size-$profile"
-          "$render" --pipelines on-first-use "$file" --profile "$profile" ${EPIPOLAR:+--epipolar "$EPIPOLAR"} \
+          keys="EPIPOLAR_${profile^^}"
+          keys="${!keys:-}"
+          "$render" --pipelines on-first-use "$file" --profile "$profile" ${keys:+--epipolar "$keys"} \
             --width "$w" --height "$h" --shadow-map-size "$map" --frames "$frames" --timings "$run.json" \
             --aov-scattering "$run.exr" >/dev/null
           "$compare" "$run.exr" "$ref.exr" --error-png "$run-error.png" >"$run-error.json"
@@ -240,7 +250,8 @@ part_spot() {
     done
   done
   python3 scripts/lib/measure_tables.py spot-tables "$rows" | tee "$out/spot-accuracy.md"
-  if [ -z "${SCENES:-}${SIZES:-}${MAP:-}${PROFILES:-}${EPIPOLAR:-}" ] && [ "${POINT:-1}" != 0 ]; then
+  if [ -z "${SCENES:-}${SIZES:-}${MAP:-}${PROFILES:-}${EPIPOLAR_HIGH:-}${EPIPOLAR_BALANCED:-}${EPIPOLAR_PERFORMANCE:-}" ] &&
+    [ "${POINT:-1}" != 0 ]; then
     doc=docs/measurements/spot-accuracy-lavapipe.md
     { printf '# Spot lights: the profiles against the Reference per scene, with the point-light variant\n\n'
       printf 'Command:\n\n    TYNDALL_DEVICE=%s scripts/measure.sh spot\n\n' "${TYNDALL_DEVICE:-(default)}"

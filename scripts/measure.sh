@@ -42,6 +42,17 @@ epipolar     The epipolar technique's profiles against the Reference in the same
              forest window-room spot-lamp), SIZES (1280x720 1920x1080), SHADOW_MAPS (2048 4096),
              PROFILES (high balanced performance), FRAMES (12), REFERENCE_FRAMES (4), RENDER and
              COMPARE (the programs, default the build's).
+spot         The profiles against the Reference on the spot-light scenes and on each with its lamp a
+             point light (same place, same occluders): relative RMSE of L_in per scene, size and
+             profile, against the per-scene bars. Writes SPOT_OUT (out/spot-accuracy) and, with the
+             default SCENES, SIZES and MAP, docs/measurements/spot-accuracy-lavapipe.md. SCENES
+             (spot-lamp stained-glass spot-fan spot-grille spot-lattice spot-foliage), SIZES
+             (320x180 480x270), MAP (2048), PROFILES (high balanced performance), FRAMES (3),
+             POINT (1; 0 leaves out the point-light variants, whose Reference is slow on lavapipe),
+             EPIPOLAR_HIGH, EPIPOLAR_BALANCED, EPIPOLAR_PERFORMANCE (a profile's run with these
+             --epipolar settings instead of its row: every key the row sets, plus the ones tried),
+             REFERENCE_FROM (an earlier SPOT_OUT with the same SIZES and MAP: its Reference renders
+             are used instead of rendering them again).
 reference    The Reference's GPU time per pass and wall-clock time per frame. Prints a table; writes
              REFERENCE_OUT (out/measure). SCENES (pillars), SIZES (640x360 1280x720), FRAMES (4).
 memory       Device memory a context holds per profile and size (Stats::deviceMemoryBytes after one
@@ -194,6 +205,63 @@ part_epipolar() {
   python3 scripts/lib/measure_tables.py epipolar-tables "$rows"
 }
 
+# spot: per spot scene (and its point-light variant), size and profile the error against the Reference.
+part_spot() {
+  local render compare out rows map frames scene file size w h light ref profile run doc keys
+  local default_scenes="spot-lamp stained-glass spot-fan spot-grille spot-lattice spot-foliage"
+  render="$(program "$1" tyndall-render)"
+  compare="$(program "$1" tyndall-compare)"
+  out="${SPOT_OUT:-out/spot-accuracy}"
+  mkdir -p "$out"
+  map="${MAP:-2048}"
+  frames="${FRAMES:-3}"
+  rows="$out/rows.jsonl"
+  : >"$rows"
+  for scene in ${SCENES:-$default_scenes}; do
+    for light in spot point; do
+      [ "$light" = point ] && [ "${POINT:-1}" = 0 ] && continue
+      file="samples/scenes/$scene.json"
+      if [ "$light" = point ]; then
+        file="$out/$scene-point.json"
+        python3 scripts/lib/measure_tables.py point-variant "samples/scenes/$scene.json" "$file"
+      fi
+      for size in ${SIZES:-320x180 480x270}; do
+        w="$(width_of "$size")"; h="$(height_of "$size")"
+        if [ -n "${REFERENCE_FROM:-}" ]; then
+          ref="$REFERENCE_FROM/$scene-$light-$size-reference"
+          [ -f "$ref.exr" ] && [ -f "$ref.json" ] || { echo "no Reference render $ref.{exr,json}" >&2; exit 1; }
+        else
+          ref="$out/$scene-$light-$size-reference"
+          "$render" --pipelines on-first-use "$file" --profile reference --width "$w" --height "$h" \
+            --shadow-map-size "$map" --frames 1 --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
+        fi
+        for profile in ${PROFILES:-high balanced performance}; do
+          run="$out/$scene-$light-$size-$profile"
+          keys="EPIPOLAR_${profile^^}"
+          keys="${!keys:-}"
+          "$render" --pipelines on-first-use "$file" --profile "$profile" ${keys:+--epipolar "$keys"} \
+            --width "$w" --height "$h" --shadow-map-size "$map" --frames "$frames" --timings "$run.json" \
+            --aov-scattering "$run.exr" >/dev/null
+          "$compare" "$run.exr" "$ref.exr" --error-png "$run-error.png" >"$run-error.json"
+          python3 scripts/lib/measure_tables.py epipolar-row "$run.json" "$run-error.json" "$ref.json" "$scene" \
+            "$size" "$map" "$profile" | sed "s/^{/{\"light\": \"$light\", /" >>"$rows"
+        done
+      done
+    done
+  done
+  python3 scripts/lib/measure_tables.py spot-tables "$rows" | tee "$out/spot-accuracy.md"
+  if [ -z "${SCENES:-}${SIZES:-}${MAP:-}${PROFILES:-}${EPIPOLAR_HIGH:-}${EPIPOLAR_BALANCED:-}${EPIPOLAR_PERFORMANCE:-}" ] &&
+    [ "${POINT:-1}" != 0 ]; then
+    doc=docs/measurements/spot-accuracy-lavapipe.md
+    { printf '# Spot lights: the profiles against the Reference per scene, with the point-light variant\n\n'
+      printf 'Command:\n\n    TYNDALL_DEVICE=%s scripts/measure.sh spot\n\n' "${TYNDALL_DEVICE:-(default)}"
+      printf 'Date: %s, commit %s. Shadow map %s², %s frames per profile run.\n\n' "$(date -u +%Y-%m-%d)" \
+        "$(git rev-parse --short HEAD 2>/dev/null || echo unknown)" "$map" "$frames"
+      cat "$out/spot-accuracy.md"; } >"$doc"
+    echo "wrote $doc"
+  fi
+}
+
 # reference: the Reference profile's timings per scene and size.
 part_reference() {
   local render out scene size json
@@ -256,7 +324,7 @@ part_extremes() {
 
 part="${1:-}"
 case "$part" in
-  tradeoffs | prefiltered | cost | epipolar | reference | memory) "part_$part" "${2:-build}" ;;
+  tradeoffs | prefiltered | cost | epipolar | spot | reference | memory) "part_$part" "${2:-build}" ;;
   extremes) part_extremes "${2:-build-tests}" ;;
   -h | --help) usage ;;
   *) usage >&2; [ -z "$part" ] || echo "unknown part: $part" >&2; exit 2 ;;

@@ -5,6 +5,7 @@
 // docs/EPIPOLAR.md has the measured figures.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 #include <utility>
@@ -85,12 +86,42 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarScenes,
 // twice its goal, ≤ 16%, as in the extremes suite), with the ray-marched samples far below the
 // pixel count.
 // Renders the scene with the Reference, then each profile, at 640×360, and checks each
-// profile's bar and its share of ray-marched samples.
+// profile's bar, its share of ray-marched samples, and that High is not less accurate than
+// Balanced. The spot scenes of thin occluders (spot-fan, -grille, -lattice, -foliage) put fine
+// shafts next to the light, seen from outside, inside and on the cone.
 // The bars are the profiles' per-scene bars (samples/bench/report.cpp profileGoals, which the
 // profile choice of docs/TRADEOFFS.md holds every scene to): the issue's, which every sample scene
 // meets (stained-glass did not until the slices were spread over the spot cone's wedge only,
 // slice_arc.h: High 7.6% -> 1.78%, Balanced 18% -> 3.41%).
 double sceneBar(Profile profile) { return samples::bench::profileGoal(profile)->maxSceneRelativeRmse; }
+
+// Measured defects, not bars: the profile table's local rows were chosen over spot-lamp and
+// stained-glass, and miss the bar on these scenes of thin blades and leaves next to the light
+// (docs/measurements/spot-accuracy-lavapipe.md has the cause and the rows that would hold them).
+// Each is held at its measured figure at 640×360 plus a tenth, so that it cannot get worse
+// unnoticed; every other check holds as for any scene.
+struct KnownMiss {
+  const char* scene;
+  Profile profile;
+  double ceiling;
+};
+constexpr KnownMiss kKnownMisses[] = {
+    {"spot-fan", Profile::High, 0.0415},       // measured 3.77%
+    {"spot-foliage", Profile::High, 0.0748},   // measured 6.80%
+    {"spot-foliage", Profile::Balanced, 0.0785},  // measured 7.13%
+    {"spot-foliage", Profile::Performance, 0.302},  // measured 27.4%
+};
+
+double barOf(const std::string& name, Profile profile) {
+  for (const KnownMiss& m : kKnownMisses) {
+    if (name == m.scene && profile == m.profile) {
+      std::printf("[ known miss ] %s %s held at %.2f%% (bar %.0f%%)\n", m.scene, to_string(profile), 100.0 * m.ceiling,
+                  100.0 * sceneBar(profile));
+      return m.ceiling;
+    }
+  }
+  return sceneBar(profile);
+}
 
 void expectProfilesMatchTheReference(const host::Scene& scene, const std::string& name) {
   samples::RenderOptions o;
@@ -104,9 +135,10 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
   // Balanced and Performance march far fewer samples than pixels everywhere; High spends up to
   // about half the pixels on a scene of thin occluders (forest: its depth breaks), so its bound is
   // looser.
+  std::map<Profile, double> errors;
   for (const auto& [profile, sampleShare] : {std::pair{Profile::High, 0.6}, std::pair{Profile::Balanced, 0.25},
                                              std::pair{Profile::Performance, 0.25}}) {
-    const double bar = sceneBar(profile);
+    const double bar = barOf(name, profile);
     o.profile = profile;
     const samples::RenderResult r = renderWithAovs(scene, o);
     const ErrorStats s = compareRgb(r.scattering, reference.scattering);
@@ -120,9 +152,12 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
     EXPECT_EQ(s.nonFinite, 0u);
     EXPECT_GT(s.meanReference, 0.0);
     EXPECT_LE(s.relativeRmse, bar) << to_string(profile) << ": " << describe(s);
+    errors[profile] = s.relativeRmse;
     EXPECT_GT(r.stats.epipolarCounts.value().marchedSamples, 0u);
     EXPECT_LT(double(r.stats.epipolarCounts.value().marchedSamples), sampleShare * pixels) << to_string(profile);
   }
+  // The profile that costs more is never the less accurate one on a scene.
+  EXPECT_LE(errors[Profile::High], errors[Profile::Balanced]) << name << ": High less accurate than Balanced";
   expectNoValidationMessages();
 }
 
@@ -134,7 +169,8 @@ TEST_P(EpipolarProfiles, EachProfileMatchesTheReference) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
                          ::testing::Values("pillars", "fence", "forest", "window-room", "spot-lamp",
-                                           "stained-glass", "point-lamp"),
+                                           "stained-glass", "point-lamp", "spot-fan", "spot-grille",
+                                           "spot-lattice", "spot-foliage"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;

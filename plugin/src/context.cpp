@@ -153,10 +153,7 @@ Outcome Context::Impl::createSizeIndependent() {
   if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
   stats.timestampsSupported = timer.supported();
   TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
-  resources.marchThreadsPerSample = tuning.marchThreadsPerSample != 0 ? tuning.marchThreadsPerSample
-                                    : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU
-                                        ? 1u
-                                        : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
+  resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
   for (ScatteringTechnique* technique : techniques) {
     if (Outcome o = technique->create(gpu, resources); !o) return o;
   }

@@ -18,7 +18,7 @@ struct TechniqueResources {
   VkSampler nearest = VK_NULL_HANDLE;  ///< nearest, clamp to edge
   VkSampler linear = VK_NULL_HANDLE;   ///< linear, clamp to edge (the light-colour texture's)
   std::uint32_t slots = 1;             ///< frames in flight: one descriptor set and constant buffer each
-  std::uint32_t marchThreadsPerSample = 1;  ///< ContextTuning::marchThreadsPerSample, resolved by device
+  std::uint32_t marchThreadsPerSample = 0;  ///< ContextTuning::marchThreadsPerSample (0: by device)
 };
 
 /// What a technique's frame is made from.

@@ -25,6 +25,11 @@ bool tyn_on_pixel_surface(vec4 coordinates, vec2 pixel_centre, float depth, vec2
   return abs(coordinates.z - expected) <= epipolar.bilateral_depth_threshold * distance;
 }
 
+// Whether two L_in differ in any channel by more than `threshold` of the larger.
+bool tyn_epipolar_contrast(vec3 a, vec3 b, float threshold) {
+  return any(greaterThan(abs(a - b), threshold * max(max(a, b), vec3(1e-30))));
+}
+
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, frame.output_extent))) return;
@@ -54,6 +59,7 @@ void main() {
   uvec2 pair = tyn_slice_pair(slice_coordinate, slices);
   float second = fract(slice_coordinate);
 
+  bool along_edge = false;
   vec3 slice_sum[2] = vec3[2](vec3(0.0), vec3(0.0));
   float slice_weight_sum[2] = float[2](0.0, 0.0);
   for (int s = 0; s < 2; ++s) {
@@ -84,6 +90,14 @@ void main() {
     if (on_surface[0] && on_surface[1]) {
       slice_sum[s] = slice_weight * mix(values[0], values[1], along);
       slice_weight_sum[s] = slice_weight;
+      // A shaft edge between the two samples along the slice: the pixel's side of it is unknown,
+      // so the interpolation errs by up to the jump. The slices crowd together near the epipole
+      // and agree there, so the comparison across slices below cannot see it; next to a local light
+      // the jump is many times the frame's mean L_in and such pixels dominate the error.
+      if (epipolar.slice_contrast_threshold < 1.0 && along > 0.0 && along < 1.0 &&
+          tyn_epipolar_contrast(values[0], values[1], epipolar.slice_contrast_threshold)) {
+        along_edge = true;
+      }
     } else if (on_surface[0] || on_surface[1]) {
       // A depth break between the two samples: the pixel has a sample of its surface on one side
       // only, up to one sample spacing away. Its value alone would be off by L_in's gradient times
@@ -116,8 +130,9 @@ void main() {
   if (epipolar.slice_contrast_threshold < 1.0 && slice_weight_sum[0] > 0.0 && slice_weight_sum[1] > 0.0) {
     vec3 a = slice_sum[0] / slice_weight_sum[0];
     vec3 b = slice_sum[1] / slice_weight_sum[1];
-    slice_edge = any(greaterThan(abs(a - b), epipolar.slice_contrast_threshold * max(max(a, b), vec3(1e-30))));
+    slice_edge = tyn_epipolar_contrast(a, b, epipolar.slice_contrast_threshold);
   }
+  slice_edge = slice_edge || along_edge;
 
   if (weight_sum >= epipolar.fixup_weight_threshold && !near_epipole && !slice_edge) {
     imageStore(out_scattering, ivec2(pixel), vec4(sum / weight_sum, 0.0));

@@ -39,9 +39,11 @@ struct EpipolarSettings {
   /// (0, 1], default 0.05.
   float fixupWeightThreshold = 0.05f;
   /// A pixel whose two slices' interpolated L_in differ (in any channel) by more than this fraction
-  /// of the larger is ray-marched by the fix-up pass: a shaft or colour edge runs between the slices,
-  /// narrower than their spacing (fine coloured shafts). (0, 1], default 1 (off): the pixels near
-  /// every shaft edge are fixed up, which costs more where shafts are many.
+  /// of the larger, or whose two samples along one slice do, is ray-marched by the fix-up pass: a
+  /// shaft or colour edge runs between the slices, narrower than their spacing (fine coloured
+  /// shafts), or an occluder next to a local light cuts L_in between two samples a pixel apart.
+  /// (0, 1], default 1 (off): the pixels near every shaft edge are fixed up, which costs more where
+  /// shafts are many.
   float sliceContrastThreshold = 1.0f;
   /// Pixels within this many pixels of the projected light (on screen or just off it) are
   /// ray-marched by the fix-up pass (klehm2014's epipole block): next to the epipole the slices

@@ -122,7 +122,11 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, const TechniqueResources& reso
   const VkSampler nearest = resources.nearest;
   const VkSampler linear = resources.linear;
   const std::uint32_t slots = resources.slots;
-  marchParts_ = resources.marchThreadsPerSample;
+  // A CPU driver runs the same work serially; a GPU needs several threads per marched sample to
+  // fill it (docs/EPIPOLAR.md).
+  marchParts_ = resources.marchThreadsPerSample != 0 ? resources.marchThreadsPerSample
+                : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1u
+                                                                           : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
   const std::array<VkSampler, kMaxShadowMaps> samplers{nearest, nearest, nearest, nearest, nearest, nearest};
   const VkShaderStageFlags stage = VK_SHADER_STAGE_COMPUTE_BIT;
   // Element i is binding i.

@@ -1,0 +1,181 @@
+#!/usr/bin/env python3
+"""Writes the spot-light scenes of thin, many-bladed occluders: samples/scenes/spot-{fan,grille,lattice,foliage}.json.
+
+Each has a 35-degree spot light whose cone is cut into fine shafts by thin boxes, seen from a
+different place relative to the cone:
+
+    spot-fan      a ceiling fan's eight thin, pitched blades under the lamp; camera outside the cone
+    spot-grille   a grille of thin parallel bars; camera inside the cone, under the grille
+    spot-lattice  a lattice of crossed thin bars turned 20 degrees; camera on the cone's outer edge
+    spot-foliage  400 small leaf cards at random rotations (fixed seed); camera outside the cone
+
+The layout is deterministic: the leaves come from SplitMix64 with a fixed seed (implemented here, so
+the output does not depend on the Python version's random module). Run from anywhere:
+
+    python3 scripts/generate-spot-scenes.py            # rewrites the four scene files
+    python3 scripts/generate-spot-scenes.py --check    # exits 1 if a committed file is out of date
+"""
+import argparse
+import json
+import math
+import pathlib
+import sys
+
+SEED = 20261128
+MASK64 = (1 << 64) - 1
+MEDIUM = ('{"scattering": [0.04, 0.04, 0.04], "absorption": [0.004, 0.004, 0.004],\n'
+          '             "phase": {"type": "henyey-greenstein", "g": 0.3}}')
+FLOOR = {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "albedo": [0.5, 0.5, 0.5]}
+DARK = [0.25, 0.25, 0.25]
+
+
+class SplitMix64:
+    """Steele, Lea & Flood 2014, the generator java.util.SplittableRandom uses."""
+
+    def __init__(self, seed):
+        self.state = seed & MASK64
+
+    def next_u64(self):
+        self.state = (self.state + 0x9E3779B97F4A7C15) & MASK64
+        z = self.state
+        z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK64
+        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK64
+        return z ^ (z >> 31)
+
+    def uniform(self, lo, hi):
+        return lo + (hi - lo) * (self.next_u64() >> 11) / float(1 << 53)
+
+
+def r(values, digits=4):
+    return [round(v, digits) + 0.0 for v in values]
+
+
+def box(center, half, rotation=(0, 0, 0), albedo=DARK):
+    return {"type": "box", "center": r(center), "halfExtents": r(half), "rotationDegrees": r(rotation, 2),
+            "albedo": albedo}
+
+
+def fan():
+    # Blades along x before rotation: pitched about their long axis (x), then turned about y
+    # (R = Rz·Ry·Rx), so a blade at yaw θ points along (cos θ, 0, −sin θ).
+    objects = [box([0, 6.15, 0], [0.16, 0.06, 0.16])]  # the hub
+    for k in range(8):
+        yaw = 22.5 + 45.0 * k
+        c, s = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
+        objects.append(box([1.0 * c, 6.1, -1.0 * s], [0.85, 0.012, 0.07], [14, yaw, 0]))
+    objects += [box([1.5, 0.45, 0.6], [0.45, 0.45, 0.45], [0, 30, 0], [0.7, 0.35, 0.2]),
+                {"type": "sphere", "center": [-1.2, 0.6, -0.8], "radius": 0.6, "albedo": [0.2, 0.4, 0.7]}]
+    return {
+        "description": "A 35-degree spot lamp hanging under a ceiling fan: eight thin, pitched blades cut fine "
+                       "shafts; the camera is outside the cone.",
+        "camera": '{"position": [6.5, 2.2, 8], "target": [0, 3, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 60, "near": 0.1, "far": 80}',
+        "light": '{"type": "spot", "position": [0, 7, 0], "direction": [0, -1, 0], "color": [1.0, 0.9, 0.75],\n'
+                 '            "intensity": 60, "innerConeDegrees": 30, "outerConeDegrees": 35}',
+        "objects": objects,
+    }
+
+
+def grille():
+    # Bars along x, 0.06 thick, every 0.3 across z, 2.7 below the lamp.
+    objects = [box([0, 5.3, -3.0 + 0.3 * i], [3.4, 0.03, 0.03]) for i in range(21)]
+    objects += [box([-1.6, 0.5, -1.2], [0.5, 0.5, 0.5], [0, 20, 0], [0.7, 0.35, 0.2]),
+                {"type": "sphere", "center": [1.4, 0.7, -2.0], "radius": 0.7, "albedo": [0.2, 0.4, 0.7]}]
+    return {
+        "description": "A 35-degree spot lamp above a grille of 21 thin bars; the camera stands inside the cone, "
+                       "under the grille, looking across the shafts.",
+        "camera": '{"position": [0.8, 1.7, 0.4], "target": [-4.0, 4.0, -0.3], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 60, "near": 0.1, "far": 80}',
+        "light": '{"type": "spot", "position": [0, 8, 0], "direction": [0, -1, 0], "color": [1.0, 0.95, 0.85],\n'
+                 '            "intensity": 80, "innerConeDegrees": 30, "outerConeDegrees": 35}',
+        "objects": objects,
+    }
+
+
+def lattice():
+    # Two layers of bars, 0.05 thick, every 0.35, crossing; the whole lattice turned 20° about y.
+    turn = math.radians(20.0)
+    c, s = math.cos(turn), math.sin(turn)
+    objects = []
+    for i in range(13):
+        o = -2.1 + 0.35 * i
+        # along x at z = o, and along z at x = o, before the turn
+        objects.append(box([o * s, 5.2, o * c], [2.4, 0.025, 0.025], [0, 20, 0]))
+        objects.append(box([o * c, 5.25, -o * s], [0.025, 0.025, 2.4], [0, 20, 0]))
+    objects += [box([0.5, 0.6, -1.0], [0.6, 0.6, 0.6], [0, 40, 0], [0.7, 0.35, 0.2])]
+    # Camera 5.5 below the lamp and 5.5 · tan 35° = 3.851 off its axis: on the outer edge of the cone.
+    return {
+        "description": "A 35-degree spot lamp above a lattice of crossed thin bars; the camera stands on the "
+                       "cone's outer edge, looking up across it.",
+        "camera": '{"position": [3.851, 1.5, 0.0], "target": [-2.0, 3.5, -1.0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 60, "near": 0.1, "far": 80}',
+        "light": '{"type": "spot", "position": [0, 7, 0], "direction": [0, -1, 0], "color": [1.0, 0.9, 0.75],\n'
+                 '            "intensity": 60, "innerConeDegrees": 28, "outerConeDegrees": 35}',
+        "objects": objects,
+    }
+
+
+def foliage():
+    rng = SplitMix64(SEED)
+    objects = []
+    for _ in range(400):
+        # Uniform over a disc of radius 1.8 and a layer 1.5 deep, 1.2 to 2.7 below the lamp.
+        radius = 1.8 * math.sqrt(rng.uniform(0.0, 1.0))
+        angle = rng.uniform(0.0, 2.0 * math.pi)
+        y = rng.uniform(4.8, 6.3)
+        rotation = [rng.uniform(-60.0, 60.0), rng.uniform(0.0, 180.0), rng.uniform(-60.0, 60.0)]
+        half = [rng.uniform(0.08, 0.14), 0.004, rng.uniform(0.04, 0.07)]
+        objects.append(box([radius * math.cos(angle), y, radius * math.sin(angle)], half, rotation, [0.2, 0.35, 0.15]))
+    objects += [box([1.0, 0.5, 0.3], [0.5, 0.5, 0.5], [0, 35, 0], [0.7, 0.35, 0.2])]
+    return {
+        "description": f"A 35-degree spot lamp shining down through 400 small leaf cards at random rotations "
+                       f"(scripts/generate-spot-scenes.py, seed {SEED}); the camera is outside the cone.",
+        "camera": '{"position": [-6, 2.0, 7.5], "target": [0, 3.5, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 60, "near": 0.1, "far": 80}',
+        "light": '{"type": "spot", "position": [0, 7.5, 0], "direction": [0, -1, 0], "color": [1.0, 0.95, 0.8],\n'
+                 '            "intensity": 70, "innerConeDegrees": 30, "outerConeDegrees": 35}',
+        "objects": objects,
+    }
+
+
+SCENES = {"spot-fan": fan, "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage}
+
+
+def scene_text(scene):
+    objects = [FLOOR] + scene["objects"]
+    lines = ",\n".join("    " + json.dumps(o, separators=(", ", ": ")) for o in objects)
+    return f"""{{
+  "description": {json.dumps(scene["description"])},
+  "camera": {scene["camera"]},
+  "light": {scene["light"]},
+  "medium": {MEDIUM},
+  "objects": [
+{lines}
+  ],
+  "shadowMap": {{"size": 2048}}
+}}
+"""
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--check", action="store_true", help="compare with the committed files instead of writing them")
+    args = parser.parse_args()
+    folder = pathlib.Path(__file__).resolve().parent.parent / "samples" / "scenes"
+    status = 0
+    for name, make in SCENES.items():
+        path = folder / f"{name}.json"
+        text = scene_text(make())
+        json.loads(text)
+        if args.check:
+            if not path.exists() or path.read_text() != text:
+                print(f"{path} is out of date: run scripts/generate-spot-scenes.py", file=sys.stderr)
+                status = 1
+        else:
+            path.write_text(text)
+            print(f"wrote {path}")
+    return status
+
+
+if __name__ == "__main__":
+    sys.exit(main())

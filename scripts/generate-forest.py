@@ -2,7 +2,7 @@
 """Writes samples/scenes/forest.json: a forest of > 2,000 thin tree trunks (boxes) on a jittered grid.
 
 The low sun shines through the trunks towards the camera, giving many thin, high-frequency shafts.
-The layout is deterministic: a fixed seed drives SplitMix64 (implemented here, so the output does not
+The layout is deterministic: a fixed seed drives SplitMix64 (scripts/lib/splitmix.py, so the output does not
 depend on the Python version's random module). Run from anywhere:
 
     python3 scripts/generate-forest.py            # rewrites samples/scenes/forest.json
@@ -17,6 +17,9 @@ import json
 import pathlib
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "lib"))
+from splitmix import SplitMix64  # noqa: E402
+
 SEED = 20240611
 GRID_SPACING = 2.0                # scene units between grid cells
 GRID_X = (-45.0, 45.0)            # inclusive cell-centre range across the view
@@ -28,24 +31,6 @@ TRUNK_HALF_WIDTH = (0.06, 0.09)   # ~0.15 units thick
 TRUNK_HALF_HEIGHT = (3.2, 4.8)    # 6.4 to 9.6 units tall
 MAX_TILT_DEGREES = 3.0
 
-MASK64 = (1 << 64) - 1
-
-
-class SplitMix64:
-    """Steele, Lea & Flood 2014, the generator java.util.SplittableRandom uses."""
-
-    def __init__(self, seed):
-        self.state = seed & MASK64
-
-    def next_u64(self):
-        self.state = (self.state + 0x9E3779B97F4A7C15) & MASK64
-        z = self.state
-        z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK64
-        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK64
-        return z ^ (z >> 31)
-
-    def uniform(self, lo, hi):
-        return lo + (hi - lo) * (self.next_u64() >> 11) / float(1 << 53)
 
 
 def cell_centres(lo, hi, spacing):

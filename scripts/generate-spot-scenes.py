@@ -9,7 +9,7 @@ different place relative to the cone:
     spot-lattice  a lattice of crossed thin bars turned 20 degrees; camera on the cone's outer edge
     spot-foliage  400 small leaf cards at random rotations (fixed seed); camera outside the cone
 
-The layout is deterministic: the leaves come from SplitMix64 with a fixed seed (implemented here, so
+The layout is deterministic: the leaves come from SplitMix64 with a fixed seed (scripts/lib/splitmix.py, so
 the output does not depend on the Python version's random module). Run from anywhere:
 
     python3 scripts/generate-spot-scenes.py            # rewrites the four scene files
@@ -21,29 +21,14 @@ import math
 import pathlib
 import sys
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent / "lib"))
+from splitmix import SplitMix64  # noqa: E402
+
 SEED = 20261128
-MASK64 = (1 << 64) - 1
 MEDIUM = ('{"scattering": [0.04, 0.04, 0.04], "absorption": [0.004, 0.004, 0.004],\n'
           '             "phase": {"type": "henyey-greenstein", "g": 0.3}}')
 FLOOR = {"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "albedo": [0.5, 0.5, 0.5]}
 DARK = [0.25, 0.25, 0.25]
-
-
-class SplitMix64:
-    """Steele, Lea & Flood 2014, the generator java.util.SplittableRandom uses."""
-
-    def __init__(self, seed):
-        self.state = seed & MASK64
-
-    def next_u64(self):
-        self.state = (self.state + 0x9E3779B97F4A7C15) & MASK64
-        z = self.state
-        z = ((z ^ (z >> 30)) * 0xBF58476D1CE4E5B9) & MASK64
-        z = ((z ^ (z >> 27)) * 0x94D049BB133111EB) & MASK64
-        return z ^ (z >> 31)
-
-    def uniform(self, lo, hi):
-        return lo + (hi - lo) * (self.next_u64() >> 11) / float(1 << 53)
 
 
 def r(values, digits=4):

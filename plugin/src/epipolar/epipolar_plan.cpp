@@ -61,8 +61,17 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   return k;
 }
 
+// How the epipolar technique marches this frame, for the stats.
+EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light) {
+  if (light == LightType::Point) return EpipolarMarch::PointLightBlockWalk;
+  if (k.tree_enabled != 0) return EpipolarMarch::MinMaxTree;
+  return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
+}
+
+}  // namespace
+
 // The epipolar part of the note: how it marched, and where the slices went (slice_arc.h).
-std::string epipolarNoteImpl(const EpipolarStats& s) {
+std::string epipolarNote(const EpipolarStats& s) {
   std::string note;
   switch (s.march) {
     case EpipolarMarch::MinMaxTree: break;
@@ -80,17 +89,6 @@ std::string epipolarNoteImpl(const EpipolarStats& s) {
                 s.slicesFitOffScreenEpipole ? "epipole off screen" : "");
   return note + line;
 }
-
-// How the epipolar technique marches this frame, for the stats.
-EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light) {
-  if (light == LightType::Point) return EpipolarMarch::PointLightBlockWalk;
-  if (k.tree_enabled != 0) return EpipolarMarch::MinMaxTree;
-  return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
-}
-
-}  // namespace
-
-std::string epipolarNote(const EpipolarStats& stats) { return epipolarNoteImpl(stats); }
 
 EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent) {
   EpipolarFramePlan plan;

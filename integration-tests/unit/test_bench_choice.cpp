@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scratch_path.h"
 #include "report.h"
 
 namespace tyndall::samples::bench {
@@ -269,7 +270,7 @@ TEST(BenchReport, TheProfilesAsTheyRunAreTheTablesRows) {
   std::vector<Row> rows{row("a", "epipolar", "table", 5.0, 100.0, 0.01), row("a", "epipolar", "challenger", 1.0, 100.0, 0.005)};
   for (Row& r : rows) r.light = "directional";
   const auto highAsItRuns = [&](const ReportContext& context) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tyndall-test-bench-as-it-runs";
+    const std::filesystem::path dir = tyndall::test::scratchPath("bench-as-it-runs");
     std::string error;
     EXPECT_TRUE(writeReports(rows, context, dir.string(), error)) << error;
     std::ifstream in(dir / "choice.json");
@@ -335,7 +336,7 @@ TEST(BenchReport, ResultsKeepTheFloorsTheCompositeAndTheCountsAndOldFilesLoad) {
   context.chooseWidth = 64;
   context.chooseHeight = 36;
   context.chooseShadowMap = 256;
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tyndall-test-bench-floors";
+  const std::filesystem::path dir = tyndall::test::scratchPath("bench-floors");
   std::string error;
   ASSERT_TRUE(writeReports({r, skipped}, context, dir.string(), error)) << error;
 

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scratch_path.h"
 #include "pareto.h"
 #include "report.h"
 
@@ -116,7 +117,7 @@ nlohmann::json writtenParetoJson(const std::vector<Row>& rows) {
   context.chooseHeight = 36;
   context.chooseShadowMap = 256;
   context.incumbents = {};
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tyndall-test-bench-pareto-json";
+  const std::filesystem::path dir = tyndall::test::scratchPath("pareto-json");
   std::string error;
   EXPECT_TRUE(writeReports(rows, context, dir.string(), error)) << error;
   std::ifstream in(dir / "pareto.json");

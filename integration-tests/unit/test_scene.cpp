@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "scratch_path.h"
 #include "tyndall_host/scene.h"
 
 namespace tyndall::host {
@@ -179,7 +180,7 @@ TEST(SceneLoading, FileErrorsNameTheFile) {
   EXPECT_FALSE(result.scene.has_value());
   EXPECT_NE(result.error.find(missing.string()), std::string::npos) << result.error;
 
-  const std::filesystem::path bad = std::filesystem::temp_directory_path() / "tyndall-test-bad-scene.json";
+  const std::filesystem::path bad = tyndall::test::scratchPath("bad-scene.json");
   SceneParts parts;
   parts.objects = R"([{"type": "sphere", "center": [0, 0, 0], "radius": -1}])";
   std::ofstream(bad) << parts.text();
@@ -543,11 +544,7 @@ TriangleMesh triangulateGltf(const std::string& nodesScenesMeshes, const std::st
     "buffers": [{"byteLength": )" + std::to_string(bytes.size()) +
                            R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("}], )" +
                            viewsAndAccessors + "}";
-  // One file per test: ctest runs each test in its own process, two at a time, and a shared name let
-  // one test remove or rewrite the file another was reading (seen under ctest -j2).
-  const ::testing::TestInfo& test = *::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path file = std::filesystem::temp_directory_path() /
-                                     (std::string("tyndall-test-mesh-") + test.test_suite_name() + "." + test.name() + ".gltf");
+  const std::filesystem::path file = tyndall::test::scratchPath("mesh.gltf");
   std::ofstream(file) << gltf;
   Object object;
   object.type = ObjectType::Gltf;

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scratch_path.h"
 #include "profiles.h"
 #include "report.h"
 #include "settings_text.h"
@@ -72,7 +73,7 @@ TEST(TradeoffsDocument, TheChoiceDataIsTheKeptRowsChoice) {
   samples::bench::ReportContext context;
   std::string error;
   ASSERT_TRUE(samples::bench::readResults(docs + "/data/tradeoffs-lavapipe-results.json", rows, context, error)) << error;
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "tyndall-test-tradeoffs-choice";
+  const std::filesystem::path dir = tyndall::test::scratchPath("tradeoffs-choice");
   ASSERT_TRUE(samples::bench::writeReports(rows, context, dir.string(), error)) << error;
   std::ifstream written(dir / "choice.json");
   std::ifstream committed(docs + "/data/tradeoffs-lavapipe-choice.json");

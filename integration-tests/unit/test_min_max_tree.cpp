@@ -505,7 +505,7 @@ TEST(MinMaxShadowTest, DescendsUnderATiltedOccluder) {
 
 // A light-colour texture along the slice (coloured shafts): a channel-varying colour in [0, 1]
 // (fast in red: 0.37 rad a cell, about a colour texel of 8 cells), taken per cell at its centre and
-// summed in float as light_color_sums.comp does (runs of consecutive cells, then the runs'
+// summed in float as slice_setup.comp does (runs of consecutive cells, then the runs'
 // offsets), read through light_color_sums.h's mean.
 dvec3 colorDouble(double u) { return dvec3(0.6 + 0.4 * std::sin(0.37 * u), 0.5 + 0.5 * std::cos(0.11 * u), 0.25); }
 

@@ -130,8 +130,9 @@ struct Context::Impl {
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
                         ScatteringTechnique* technique);
+  // `release` receives the barriers that hand the inputs back and the target to the composite.
   void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, ScatteringTechnique& technique,
-                       VkImageLayout depthLayout);
+                       VkImageLayout depthLayout, BarrierBatch& release);
   void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets);
 };
 
@@ -458,6 +459,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
                                      ScatteringTechnique* technique) {
   const VkImageLayout depthLayout = sampledDepthLayout(frame.depth.layout);
+  // The technique's releases and the back buffer's acquisition for the composite: one barrier.
+  BarrierBatch release;
   // The depth buffer stays acquired until the T AOV (Impl::record releases it).
   imageBarrier(gpu, cmd, frame.depth.image, barrierAspect(frame.depth.format), frame.depth.arrayLayer,
                hostBefore(frame.depth), {depthLayout, kDepthReaders, VK_ACCESS_SHADER_READ_BIT});
@@ -477,7 +480,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                  {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers,
                   VK_ACCESS_SHADER_READ_BIT});
   } else {
-    recordTechnique(cmd, slot, frame, *technique, depthLayout);
+    recordTechnique(cmd, slot, frame, *technique, depthLayout, release);
   }
 
   // Composite into the back buffer: in place by compute where it is a storage image, else blended.
@@ -485,8 +488,9 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   if (stats.composite == CompositePath::Compute) {
     const ImageUse readWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                              VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT};
-    imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
-                 hostBefore(frame.color), readWrite);
+    release.image(frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer, hostBefore(frame.color),
+                  readWrite);
+    release.record(gpu, cmd);
     composite.recordCompute(gpu, cmd, slot, constants[slot].buffer, frame.depth, depthLayout, scattering.view,
                             frame.color);
     timer.endPass(gpu, cmd);
@@ -499,8 +503,9 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   const VkImageLayout attachment = keepGeneral(frame.color.layout, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   const VkPipelineStageFlags output = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   const VkAccessFlags blend = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
-  imageBarrier(gpu, cmd, frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer,
-               hostBefore(frame.color), {attachment, output, blend});
+  release.image(frame.color.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.color.arrayLayer, hostBefore(frame.color),
+                {attachment, output, blend});
+  release.record(gpu, cmd);
   composite.record(gpu, cmd, slot, constants[slot].buffer, frame.depth, depthLayout, scattering.view,
                    frame.color, attachment);
   timer.endPass(gpu, cmd);
@@ -512,17 +517,18 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
 // The technique's passes into the L_in target, left for the composite's fragment shader to read.
 // The depth buffer is acquired (recordScattering), in `depthLayout`.
 void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                                    ScatteringTechnique& technique, VkImageLayout depthLayout) {
+                                    ScatteringTechnique& technique, VkImageLayout depthLayout, BarrierBatch& release) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 
   // Each pass's timestamps are written before its barriers: a CPU driver (lavapipe) takes a
   // timestamp when it next flushes, and a barrier flushes, so the stamps then bracket the work.
   const char* singlePass = technique.singlePassName();
   if (singlePass != nullptr) timer.beginPass(gpu, cmd, singlePass);
-  // Tyndall's target: the previous frame's reads must finish before it is overwritten; the old
-  // contents are discarded.
-  imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0},
-               {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
+  // The technique's inputs and target in one barrier. Tyndall's target: the previous frame's reads
+  // must finish before it is overwritten; the old contents are discarded.
+  BarrierBatch acquire;
+  acquire.image(scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0},
+                {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
 
   // Host inputs: depth buffer and shadow maps, sampled by the compute pass.
   ScatteringBindings bindings;
@@ -531,21 +537,13 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
   bindings.depthLayout = depthLayout;
   bindings.light = frame.light.type;
   bindings.scattering = scattering.view;
-  auto acquireDepth = [&](const ImageRef& image, VkImageLayout layout, VkPipelineStageFlags stages) {
-    imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, hostBefore(image),
-                 {layout, stages, VK_ACCESS_SHADER_READ_BIT});
-  };
-  auto releaseDepth = [&](const ImageRef& image, VkImageLayout layout) {
-    imageBarrier(gpu, cmd, image.image, barrierAspect(image.format), image.arrayLayer, {layout, compute, 0},
-                 hostAfter(image));
-  };
   // The light-colour texture, or the white texel (cleared once, in the first frame that needs it).
   if (!frame.lightColor.empty()) {
     bindings.lightColor = frame.lightColor.view;
     bindings.lightColorLayout = sampledColorLayout(frame.lightColor.layout);
     bindings.hasLightColor = true;
-    imageBarrier(gpu, cmd, frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
-                 hostBefore(frame.lightColor), {bindings.lightColorLayout, compute, VK_ACCESS_SHADER_READ_BIT});
+    acquire.image(frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
+                  hostBefore(frame.lightColor), {bindings.lightColorLayout, compute, VK_ACCESS_SHADER_READ_BIT});
   } else {
     if (!whiteCleared) {
       imageBarrier(gpu, cmd, white.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, compute, 0},
@@ -553,9 +551,9 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
       const VkClearColorValue one{{1.0f, 1.0f, 1.0f, 1.0f}};
       const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
       gpu.vk.vkCmdClearColorImage(cmd, white.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &one, 1, &range);
-      imageBarrier(gpu, cmd, white.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                   {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
-                   {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, compute, VK_ACCESS_SHADER_READ_BIT});
+      acquire.image(white.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                    {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
+                    {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, compute, VK_ACCESS_SHADER_READ_BIT});
       whiteCleared = true;
     }
     bindings.lightColor = white.view;
@@ -565,32 +563,36 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
     const ImageRef& map = frame.shadowMaps[i].depth;
     bindings.shadowMaps[i] = map.view;
     bindings.shadowLayouts[i] = sampledDepthLayout(map.layout);
-    acquireDepth(map, bindings.shadowLayouts[i], compute);
+    acquire.image(map.image, barrierAspect(map.format), map.arrayLayer, hostBefore(map),
+                  {bindings.shadowLayouts[i], compute, VK_ACCESS_SHADER_READ_BIT});
   }
 
   if (frame.debugView != DebugView::None && technique.drawsDebugViews()) {
     bindings.debug = debugImage.view;
     bindings.debugView = frame.debugView;
-    imageBarrier(gpu, cmd, debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                 {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_TRANSFER_BIT, 0},
-                 {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
+    acquire.image(debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, VK_PIPELINE_STAGE_TRANSFER_BIT, 0},
+                  {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
   }
+  acquire.record(gpu, cmd);
   technique.record(gpu, cmd, RecordTarget{slot, bindings, extent, timer, stats.passesRecorded});
   if (singlePass != nullptr) {
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back(singlePass);
   }
+  // The inputs go back to the host and the target to the composite, with the caller's barriers.
   if (!frame.lightColor.empty()) {
-    imageBarrier(gpu, cmd, frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
-                 {bindings.lightColorLayout, compute, 0}, hostAfter(frame.lightColor));
+    release.image(frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
+                  {bindings.lightColorLayout, compute, 0}, hostAfter(frame.lightColor));
   }
   for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
-    releaseDepth(frame.shadowMaps[i].depth, bindings.shadowLayouts[i]);
+    const ImageRef& map = frame.shadowMaps[i].depth;
+    release.image(map.image, barrierAspect(map.format), map.arrayLayer, {bindings.shadowLayouts[i], compute, 0},
+                  hostAfter(map));
   }
-  imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-               {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
-               {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, VK_ACCESS_SHADER_READ_BIT});
+  release.image(scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
+                {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, VK_ACCESS_SHADER_READ_BIT});
 }
+
 
 // Copies L_in and T to the host's AOV images (blit: converts to their format), or, when
 // nothing was computed, clears them to L_in = 0 and T = 1. T has no target of its own: once L_in

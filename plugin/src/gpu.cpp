@@ -167,6 +167,40 @@ void memoryBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkPipelineStageFlags src
   gpu.cmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
+void BarrierBatch::memory(VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                          VkAccessFlags dstAccess) {
+  src_ |= srcStage;
+  dst_ |= dstStage;
+  srcAccess_ |= srcAccess;
+  dstAccess_ |= dstAccess;
+  hasMemory_ = true;
+}
+
+void BarrierBatch::image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to) {
+  VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+  barrier.srcAccessMask = from.access;
+  barrier.dstAccessMask = to.access;
+  barrier.oldLayout = from.layout;
+  barrier.newLayout = to.layout;
+  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+  barrier.image = image;
+  barrier.subresourceRange = {aspect, 0, 1, layer, 1};
+  images_.push_back(barrier);
+  src_ |= from.stage;
+  dst_ |= to.stage;
+}
+
+void BarrierBatch::record(const Gpu& gpu, VkCommandBuffer cmd) {
+  if (!hasMemory_ && images_.empty()) return;
+  VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  memory.srcAccessMask = srcAccess_;
+  memory.dstAccessMask = dstAccess_;
+  gpu.cmdPipelineBarrier(cmd, src_, dst_, 0, hasMemory_ ? 1u : 0u, &memory, 0, nullptr,
+                         static_cast<std::uint32_t>(images_.size()), images_.data());
+  *this = BarrierBatch{};
+}
+
 void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                   std::uint32_t layer, ImageUse from, ImageUse to) {
   VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};

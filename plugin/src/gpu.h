@@ -89,6 +89,27 @@ struct ImageUse {
   VkAccessFlags access;
 };
 
+/// Barriers gathered into one vkCmdPipelineBarrier: the union of their stages orders each at least
+/// as strongly as its own call would, and a GPU waits once where it would wait per call. For
+/// barriers that are adjacent in the command stream anyway (a frame's acquisitions and releases);
+/// one image may appear once.
+class BarrierBatch {
+ public:
+  void memory(VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+              VkAccessFlags dstAccess);
+  void image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to);
+  /// Records the batch (nothing when empty) and empties it.
+  void record(const Gpu& gpu, VkCommandBuffer cmd);
+
+ private:
+  VkPipelineStageFlags src_ = 0;
+  VkPipelineStageFlags dst_ = 0;
+  VkAccessFlags srcAccess_ = 0;
+  VkAccessFlags dstAccess_ = 0;
+  bool hasMemory_ = false;
+  std::vector<VkImageMemoryBarrier> images_;
+};
+
 /// Global memory barrier: `srcAccess` writes in `srcStage` made visible to `dstAccess` in `dstStage`.
 void memoryBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
                    VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);

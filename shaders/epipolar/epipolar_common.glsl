@@ -10,8 +10,13 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_DEPTH) uniform sampler2D depth_bu
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SHADOW_MAPS) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 // (entry.xy, exit.xy) per slice, NDC; TYN_EPIPOLAR_INVALID_COORD for a culled slice.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SLICE_END_POINTS, rgba32f) uniform image2D slice_end_points;
-// Per (sample, slice): NDC xy, view-ray length to the surface, 1 when the sample is valid.
+// Per (sample, slice): NDC xy, view-ray length to the surface, 1 when the sample is valid. The slice
+// setup reads what other threads of its group wrote: it defines TYN_COORDINATES_COHERENT.
+#ifdef TYN_COORDINATES_COHERENT
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_COORDINATES, rgba32f) coherent uniform image2D epipolar_coordinates;
+#else
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_COORDINATES, rgba32f) uniform image2D epipolar_coordinates;
+#endif
 // Per (sample, slice): L_in of the ray-marched sample.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SAMPLE_SCATTERING, rgba32f) uniform image2D epipolar_scattering;
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_OUT_SCATTERING, rgba32f) uniform image2D out_scattering;
@@ -29,7 +34,7 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_LIST, std430) buffer FixupL
   uint fixup_pixels[];
 };
 // VkDispatchIndirectCommand for the fix-up pass, then one for the shadow-map blocks pass, which
-// runs (and the fix-up walks the blocks) only where fixup_args.comp finds it worth its cost.
+// runs (and the fix-up walks the blocks) only where the unwarp finds it worth its cost.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_ARGS, std430) buffer FixupArgs {
   uint fixup_groups[3];
   uint shadow_block_groups[3];
@@ -43,20 +48,22 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SLICE_UV, rgba32f) uniform image2
 // One row per slice: its 1D min/max binary tree, level after level (min_max_tree.h's layout).
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_MIN_MAX_TREE, rg32f) uniform image2D min_max_tree;
 // The ray-marching samples the refinement chose, sample | slice << 16, with their count (read back
-// for the stats) and the VkDispatchIndirectCommand that runs one march thread per entry of the
-// current round: marching a compact list keeps every lane busy, where a thread per (sample, slice)
-// would idle all but one in `initial step`. The refinement lists [0, n0); with a tree,
-// shadow_test.comp lists those not in shadow again at [n0, n1) and round 1 marches them, else
-// round 1 marches [0, n0); round 2 (the samples refine_intensity.comp adds) marches what follows.
-// march_args.comp starts each of these ranges. The header is 8 words
-// (kMarchHeaderWords in epipolar_technique.cpp).
+// for the stats) and the VkDispatchIndirectCommands that run the passes over them: marching a
+// compact list keeps every lane busy, where a thread per (sample, slice) would idle all but one in
+// `initial step`. The slice setup lists [0, n0); with a tree, shadow_test.comp lists those not in
+// shadow again at [n0, n1) and round 1 marches them, else round 1 marches [0, n0); round 2 (the
+// samples refine_intensity.comp adds) marches what follows. Each producer's last workgroup starts
+// the next range (dispatch_chain.glsl). The header is 18 words (kMarchHeaderWords in
+// epipolar_technique.cpp), zeroed every frame.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_MARCH_LIST, std430) buffer MarchList {
-  uint march_groups[3];
+  uint test_groups[3];     // the shadow test's dispatch (slice_setup.comp)
+  uint round_groups[6];    // march round 1's dispatch, then round 2's
   uint march_count;        // entries so far
   uint march_first;        // first entry of the current round
   uint march_round_end;    // entries when the current round started (the next round's first)
-  uint march_shadowed;      // samples shadow_test.comp found in shadow along their whole ray
+  uint march_shadowed;     // samples shadow_test.comp found in shadow along their whole ray
   uint march_listed;       // the refinement's entries, which shadow_test.comp lists again (or not)
+  uint groups_done[4];     // workgroups finished per producing pass (dispatch_chain.glsl)
   uint march_samples[];
 };
 
@@ -88,7 +95,7 @@ float tyn_epipolar_shadow_texel(ivec2 texel) {
 
 // The plane of the surface at a pixel of the depth buffer (epipolar_geometry.h, "The surface around
 // a pixel"): slopes per pixel along x and y. The tolerance is the bilateral threshold in both
-// passes that use it, so that a sample's depth (coordinates.comp) and the unwarp's expectation of
+// passes that use it, so that a sample's depth (slice_setup.comp) and the unwarp's expectation of
 // it (unwarp.comp) come from the same plane.
 vec2 tyn_epipolar_depth_range() {
   return vec2(min(frame.near_ndc_depth, frame.far_ndc_depth), max(frame.near_ndc_depth, frame.far_ndc_depth));

@@ -24,7 +24,7 @@ TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_MAX_SAMPLES = 4096u;
 // Interpolation source of a sample past the slice's sample count.
 TYN_CONST uint TYN_EPIPOLAR_NO_SOURCE = 0xffffffffu;
-// Near the epipole the ray-marching step is at most 1/this of the distance to it (refine.comp).
+// Near the epipole the ray-marching step is at most 1/this of the distance to it (slice_setup.comp).
 TYN_CONST float TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS = 4.0f;
 // An interval refine_intensity.comp refines is cut into this many (the initial step into quarters).
 TYN_CONST uint TYN_EPIPOLAR_SUBDIVISIONS = 4u;

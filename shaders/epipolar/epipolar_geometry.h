@@ -365,7 +365,7 @@ TYN_FUNC float tyn_sample_coordinate(float fraction, uint sample_count, float ep
 // neighbouring pixel centres on one plane have a zero second difference. The passes use this to
 // know the surface between pixel centres, which a point-sampled depth buffer does not say:
 // - a sample's view ray must end on the surface at the sample's own position, not at the depth
-//   of the pixel it falls in (coordinates.comp);
+//   of the pixel it falls in (slice_setup.comp);
 // - the unwarp's bilateral test asks whether a tap lies on the pixel's surface, so it compares the
 //   tap's view-ray length with the pixel's plane where the tap is, not with the pixel's own ray
 //   length (unwarp.comp).

@@ -6,7 +6,7 @@
 // leave the GPU idle while a few long walks finish. A CPU driver has no idle lanes to fill and pays
 // for the split (64 partial walks, each finding its start, and the barriers between them): there a
 // directional light's pixels are walked one per thread, as in the Reference (epipolar_technique.cpp,
-// serialFixup, says when). fixup_args.comp sizes the dispatch for either and caps the groups at the
+// serialFixup, says when). The unwarp sizes the dispatch for either and caps the groups at the
 // dispatch limit, so the groups stride over the rest of the list. With EpipolarSettings::fixupSteps
 // the walk is replaced by that many steps per map (fixup_steps.glsl), shared by the same threads.
 #extension GL_GOOGLE_include_directive : require
@@ -24,7 +24,7 @@
 #include "epipolar/fixup_steps.glsl"
 
 // Whether this frame built the blocks: a point light's before the march, whenever the frame has
-// a block image; a directional light's where fixup_args.comp found them worth building.
+// a block image; a directional light's where the unwarp found them worth building.
 bool tyn_shadow_blocks_built() {
   return TYN_LIGHT_TYPE == TYN_LIGHT_POINT ? epipolar.shadow_block_side != 0u : shadow_block_groups[0] != 0u;
 }

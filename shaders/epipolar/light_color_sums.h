@@ -6,7 +6,7 @@
 // shadowed nodes. But along a slice's line the colour is a function of the line's 1D parameter u
 // alone (every view ray of the slice projects onto the line, and the texture lies over shadow map
 // 0's UV square), the same for every ray of the slice. So it is summed once per slice (the pass
-// light_color_sums.comp) and the march integrates a lit section [a, b] as
+// slice_setup.comp) and the march integrates a lit section [a, b] as
 //     ∫ c(u) w(u) du ≈ c̄(a, b) · ∫ w(u) du,   c̄(a, b) = (1 / (b − a)) ∫_a^b c(u) du,
 // with w the uncoloured integrand (a directional light's closed form, a spot light's quadrature): exact
 // for a constant colour, and otherwise off by the covariance of c and w over the section, which

@@ -156,7 +156,8 @@ shared vec3 g_parts[TYN_EPIPOLAR_MARCH_GROUP];
 
 void main() {
   // TYN_MARCH_PARTS threads per entry of this round of the march list; the other samples are
-  // interpolated later. march_args.comp caps the groups at the dispatch limit, so groups stride
+  // interpolated by the unwarp. The round's groups are capped at the dispatch limit
+  // (dispatch_chain.glsl), so groups stride
   // over the round (a loop whose trip count is the workgroup's, as the barriers need).
   uint per_group = TYN_EPIPOLAR_MARCH_GROUP / TYN_MARCH_PARTS;
   uint lane = gl_LocalInvocationID.x / TYN_MARCH_PARTS;

@@ -6,13 +6,14 @@
 // the slice, and the fast falloff near a local light, which linear interpolation over the initial
 // step would flatten. (engelhardt2010 §4.2 rejects an intensity criterion as the only one, since it
 // can miss a shadow between two samples; here it only adds samples to the depth-based ones.)
-// One workgroup per slice, as refine.comp: each thread takes every TYN_EPIPOLAR_REFINE_GROUP-th
+// One workgroup per slice, as the first refinement (slice_setup.comp): each thread takes every TYN_EPIPOLAR_REFINE_GROUP-th
 // sample, finds its interval from its own interpolation sources (left < k < right when it is not
 // ray-marched) and decides alone whether it becomes a sample and what its new sources are; one
 // atomic per slice reserves the slice's range of the list (one thread per slice walking its
 // samples would be bound by latency on a GPU).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
+#include "epipolar/dispatch_chain.glsl"
 
 layout(local_size_x = TYN_EPIPOLAR_REFINE_GROUP) in;
 
@@ -40,8 +41,7 @@ bool tyn_subdivided_interval(uint k, uint slice, out uint k0, out uint k1) {
 shared uint tyn_added;
 shared uint tyn_base;
 
-void main() {
-  uint slice = gl_WorkGroupID.x;
+void tyn_refine_slice(uint slice) {
   uint thread = gl_LocalInvocationIndex;
   vec4 end_points = imageLoad(slice_end_points, ivec2(slice, 0));
   uint count = tyn_slice_sample_count(end_points, tyn_output_extent(), epipolar.samples_per_slice, epipolar.epipole_density,
@@ -72,4 +72,10 @@ void main() {
     uint right = marched ? k : min(k1, k0 + (index + 1u) * step);
     imageStore(interpolation_source, ivec2(k, slice), uvec4(left | (right << 16)));
   }
+}
+
+void main() {
+  tyn_refine_slice(gl_WorkGroupID.x);
+  // The last group starts the march's second round over the samples added here.
+  if (tyn_last_group(TYN_DONE_REFINE_INTENSITY)) tyn_start_march_round(1u);
 }

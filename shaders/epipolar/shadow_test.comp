@@ -6,8 +6,8 @@
 // visible point (behind a wall covering the screen) nothing is listed and the march's indirect
 // dispatch runs no work: the decision needs the shadow map, so it is made on the GPU. One thread
 // per listed sample, like the march (the same walk in the refinement's one-thread-per-slice loop
-// cost more refinement time than it saved march time on lavapipe). shadow_test_args.comp skips
-// the pass when the camera is lit.
+// cost more refinement time than it saved march time on lavapipe). The slice setup skips the pass
+// when the camera is lit; the test's last workgroup starts the march (dispatch_chain.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 
@@ -16,6 +16,7 @@ int g_slice;
   imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree_samples), level) + (index), g_slice)).xy
 #include "epipolar/min_max_tree.h"
 #include "epipolar/slice_ray.glsl"
+#include "epipolar/dispatch_chain.glsl"
 
 layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
 
@@ -65,7 +66,7 @@ shared uint tyn_base;
 void main() {
   if (gl_LocalInvocationIndex == 0u) tyn_kept = 0u;
   barrier();
-  // The refinement's entries are this round's [march_first, march_round_end) (march_args.comp).
+  // The refinement's entries are [march_first, march_round_end) (slice_setup.comp).
   uint entry = march_first + gl_GlobalInvocationID.x;
   if (gl_GlobalInvocationID.x == 0u) march_listed = march_round_end;
   bool listed = entry < march_round_end;
@@ -88,4 +89,5 @@ void main() {
   if (gl_LocalInvocationIndex == 0u) tyn_base = atomicAdd(march_count, tyn_kept);
   barrier();
   if (kept) march_samples[tyn_base + slot] = packed;
+  if (tyn_last_group(TYN_DONE_SHADOW_TEST)) tyn_start_march_round(0u);
 }

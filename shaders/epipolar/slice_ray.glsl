@@ -2,7 +2,7 @@
 // binary trees"): every view ray of a slice projects onto that line, so the ray is described by
 // the line's 1D parameter u (texel units, min_max_tree.h) and its shadow depth and view distance
 // at both ends of its part inside the map. Shared by the march (march.comp) and the refinement's
-// whole-ray shadow test (refine.comp), so that a sample the test finds in shadow is one the march
+// whole-ray shadow test (shadow_test.comp), so that a sample the test finds in shadow is one the march
 // would have given zero to the bit. Include after epipolar/min_max_tree.h.
 #ifndef TYNDALL_SLICE_RAY_GLSL
 #define TYNDALL_SLICE_RAY_GLSL
@@ -24,7 +24,7 @@ struct TynSliceRay {
 };
 
 // The view ray from `origin` along unit `dir` up to distance s, on the slice whose line in
-// shadow-map UV is origin_direction (slice_uv.comp).
+// shadow-map UV is origin_direction (slice_setup.comp).
 TynSliceRay tyn_slice_ray(vec4 origin_direction, vec3 origin, vec3 dir, float s) {
   float size = float(frame.shadow_map_size);
   TynSliceRay sr;

@@ -6,9 +6,15 @@
 // next one on its surface. A pixel left with too little weight (a depth break no sample saw), or
 // whose two slices disagree by more than the slice-contrast threshold (a shaft or colour edge
 // between them, narrower than their spacing), is appended to the fix-up list. A pixel off the
-// slices' arc has L_in = 0. T is the composite's (exact per pixel).
+// slices' arc has L_in = 0. T is the composite's (exact per pixel). The samples that were not
+// ray-marched are interpolated along their slice here, from the ones that were; the last workgroup
+// sizes the fix-up.
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
+#include "epipolar/dispatch_chain.glsl"
+
+// The fix-up's shape (fixup.comp): a thread per pixel, or a workgroup per pixel.
+layout(constant_id = 3) const bool TYN_FIXUP_SERIAL = false;
 
 layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE) in;
 
@@ -25,14 +31,26 @@ bool tyn_on_pixel_surface(vec4 coordinates, vec2 pixel_centre, float depth, vec2
   return abs(coordinates.z - expected) <= epipolar.bilateral_depth_threshold * distance;
 }
 
+// L_in of sample k of a slice (yusov2013's interpolation along the slices): its own when it was
+// ray-marched, else linear between its two interpolation sources, which lie on its surface (a depth
+// break between them would have made a ray-marched sample).
+vec3 tyn_sample_in_scattering(int k, int slice) {
+  uint source = imageLoad(interpolation_source, ivec2(k, slice)).x;
+  uint left = source & 0xffffu;
+  uint right = source >> 16;
+  if (left == uint(k)) return imageLoad(epipolar_scattering, ivec2(k, slice)).rgb;
+  vec3 a = imageLoad(epipolar_scattering, ivec2(int(left), slice)).rgb;
+  vec3 b = imageLoad(epipolar_scattering, ivec2(int(right), slice)).rgb;
+  float w = float(uint(k) - left) / float(max(right - left, 1u));
+  return mix(a, b, w);
+}
+
 // Whether two L_in differ in any channel by more than `threshold` of the larger.
 bool tyn_epipolar_contrast(vec3 a, vec3 b, float threshold) {
   return any(greaterThan(abs(a - b), threshold * max(max(a, b), vec3(1e-30))));
 }
 
-void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(pixel, frame.output_extent))) return;
+void tyn_unwarp(uvec2 pixel) {
   vec2 extent = tyn_output_extent();
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
@@ -85,7 +103,7 @@ void main() {
       float tap_weight = t == 0 ? 1.0 - along : along;
       vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(index), int(slice)));
       on_surface[t] = tap_weight > 0.0 && tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, distance);
-      values[t] = on_surface[t] ? imageLoad(epipolar_scattering, ivec2(int(index), int(slice))).rgb : vec3(0.0);
+      values[t] = on_surface[t] ? tyn_sample_in_scattering(int(index), int(slice)) : vec3(0.0);
     }
     if (on_surface[0] && on_surface[1]) {
       slice_sum[s] = slice_weight * mix(values[0], values[1], along);
@@ -114,7 +132,7 @@ void main() {
       if (reach > 0.0 && beyond >= 0.0 && beyond < float(count)) {
         vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(beyond), int(slice)));
         if (tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, distance)) {
-          vec3 next = imageLoad(epipolar_scattering, ivec2(int(beyond), int(slice))).rgb;
+          vec3 next = tyn_sample_in_scattering(int(beyond), int(slice));
           value = max(value + (value - next) * reach, vec3(0.0));
         }
       }
@@ -141,4 +159,33 @@ void main() {
     fixup_pixels[slot] = pixel.x | (pixel.y << 16);
     imageStore(out_scattering, ivec2(pixel), vec4(0.0));
   }
+}
+
+// Sizes the indirect fix-up dispatch by the number of flagged pixels: one workgroup per pixel when
+// the fix-up splits each walk over its workgroup, one thread per pixel when it does not
+// (fixup.comp), up to the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and
+// its debug view loop over the rest): zero groups, and so no work, when none was flagged.
+// Where a directional light's frame has a block image (EpipolarConstants::shadow_block_side) it also
+// sizes the shadow-map blocks pass (shadow_blocks.comp): the blocks read the whole map, a cost the
+// fix-up's block steps repay only when it walks enough rays (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS);
+// otherwise zero groups, and the fix-up walks texel by texel or in steps. A point light's blocks
+// are built before the march, which walks every sample: the groups written here for one are not read.
+void tyn_size_fixup() {
+  uint flagged = atomicAdd(fixup_count, 0u);
+  uint groups = TYN_FIXUP_SERIAL ? (flagged + TYN_EPIPOLAR_FIXUP_GROUP - 1u) / TYN_EPIPOLAR_FIXUP_GROUP : flagged;
+  fixup_groups[0] = min(groups, TYN_EPIPOLAR_MAX_GROUPS);
+  fixup_groups[1] = 1u;
+  fixup_groups[2] = 1u;
+  uint side = epipolar.shadow_block_side;
+  bool blocks = side != 0u && flagged * TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS >= frame.shadow_map_size;
+  uint block_groups = (side + TYN_EPIPOLAR_SHADOW_BLOCK_GROUP - 1u) / TYN_EPIPOLAR_SHADOW_BLOCK_GROUP;
+  shadow_block_groups[0] = blocks ? block_groups : 0u;
+  shadow_block_groups[1] = blocks ? block_groups : 0u;
+  shadow_block_groups[2] = 1u;
+}
+
+void main() {
+  uvec2 pixel = gl_GlobalInvocationID.xy;
+  if (all(lessThan(pixel, frame.output_extent))) tyn_unwarp(pixel);
+  if (tyn_last_group(TYN_DONE_UNWARP)) tyn_size_fixup();
 }

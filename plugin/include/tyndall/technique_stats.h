@@ -23,6 +23,9 @@ struct EpipolarStats {
   float sliceBorderFraction = 1.0f;
   bool slicesFitSpotCone = false;        ///< the wedge was narrowed to the spot cone
   bool slicesFitOffScreenEpipole = false;///< the wedge was narrowed to what an off-screen epipole sees
+  /// With a light-colour texture, lit parts of a slice's line are integrated in chunks of this many
+  /// cells, each times its mean colour from the slice's prefix sums; 0 without (or a point light).
+  std::uint32_t coloredChunkCells = 0;
 };
 
 /// Counts read back from an earlier frame of the epipolar technique (the frame of `lastTimings`).

@@ -100,6 +100,7 @@ EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettin
   plan.treeSamples = k.tree_enabled != 0 ? k.tree_samples : 0;
   // The light-colour texture's sums along the slices' lines, for the march along them.
   plan.colorSamples = k.colored_chunk != 0 ? k.tree_samples : 0;
+  plan.stats.coloredChunkCells = frame.light.type != LightType::Point ? k.colored_chunk : 0;
   // The blocks the walks cross (block_walk.glsl): a point light's march walks every sample; a
   // directional light's fix-up only where it walks texel by texel (not in steps).
   const bool walked = frame.light.type == LightType::Point || settings.fixupSteps == 0;
@@ -107,7 +108,7 @@ EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettin
                           ? shadowBlockExtent(frame.light.type, frame.shadowMaps[0].depth.extent.width,
                                               static_cast<std::uint32_t>(frame.shadowMaps.size()))
                           : VkExtent2D{0, 0};
-  // Blocks along a map's side: fixup_args.comp sizes a directional light's blocks pass by it.
+  // Blocks along a map's side: unwarp.comp sizes a directional light's blocks pass by it.
   k.shadow_block_side = plan.shadowBlocks.width;
   return plan;
 }

@@ -31,11 +31,12 @@ static_assert(offsetof(gpu::EpipolarConstants, colored_chunk) == 76);
 static_assert(offsetof(gpu::EpipolarConstants, arc_start) == 80);
 static_assert(offsetof(gpu::EpipolarConstants, shadow_block_side) == 92);
 static_assert(sizeof(gpu::EpipolarConstants) == 96);
-// march.comp's and march_args.comp's TYN_MARCH_PARTS (constant_id 1 is the light-colour switch).
+// TYN_MARCH_PARTS of march.comp and of the passes that size its rounds (dispatch_chain.glsl;
+// constant_id 1 is the light-colour switch).
 constexpr std::uint32_t kMarchPartsConstantId = 2;
-// fixup.comp's and fixup_args.comp's TYN_FIXUP_SERIAL.
+// fixup.comp's and unwarp.comp's TYN_FIXUP_SERIAL.
 constexpr std::uint32_t kFixupSerialConstantId = 3;
-// fixup_args.comp sizes the one-thread-per-pixel dispatch in groups of TYN_EPIPOLAR_FIXUP_GROUP,
+// unwarp.comp sizes the one-thread-per-pixel fix-up in groups of TYN_EPIPOLAR_FIXUP_GROUP,
 // and fixup.comp's workgroup is the split march's.
 static_assert(gpu::TYN_EPIPOLAR_FIXUP_GROUP == gpu::TYN_SPLIT_MARCH_PARTS);
 
@@ -48,14 +49,17 @@ static_assert(gpu::TYN_EPIPOLAR_FIXUP_GROUP == gpu::TYN_SPLIT_MARCH_PARTS);
 bool serialFixup(std::uint32_t marchParts, LightType light) {
   return marchParts == 1 && light == LightType::Directional;
 }
-// The march list's header: VkDispatchIndirectCommand, then the count, ..., the samples found in
-// shadow and the entries the shadow test read (epipolar_common.glsl's MarchList).
-constexpr VkDeviceSize kMarchHeaderWords = 8;
+// The march list's header (epipolar_common.glsl's MarchList): the shadow test's and the two march
+// rounds' VkDispatchIndirectCommands, the count, the current round, the samples found in shadow,
+// the entries the shadow test read, and the producers' finished workgroups.
+constexpr VkDeviceSize kMarchHeaderWords = 18;
+constexpr VkDeviceSize kShadowTestArgsOffset = 0;
+constexpr VkDeviceSize kMarchRoundArgsOffset[2] = {3 * sizeof(std::uint32_t), 6 * sizeof(std::uint32_t)};
 // Sample-texture sets of other sizes kept for a switch back (profiles differ in slices and
 // samples): High, Balanced and Performance each keep theirs while the others run.
 constexpr std::size_t kSpareTextureSets = 2;
-constexpr VkDeviceSize kMarchCountOffset = 3 * sizeof(std::uint32_t);
-constexpr VkDeviceSize kMarchShadowedOffset = 6 * sizeof(std::uint32_t);  // then the listed count
+constexpr VkDeviceSize kMarchCountOffset = 9 * sizeof(std::uint32_t);
+constexpr VkDeviceSize kMarchShadowedOffset = 12 * sizeof(std::uint32_t);  // then the listed count
 constexpr VkPipelineStageFlags kCompute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
 // One VkDispatchIndirectCommand; the fix-up arguments hold the fix-up's, then the blocks pass's.
 constexpr VkDeviceSize kDispatchArgsBytes = 3 * sizeof(std::uint32_t);
@@ -180,18 +184,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, const TechniqueResources& reso
 
 Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (commonReady_) return {};
-  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 16> pipelines{{
-      {&slicePipeline_, shaders::slice_end_points_comp()},
-      {&coordinatesPipeline_, shaders::coordinates_comp()},
-      {&refinePipeline_, shaders::refine_comp()},
-      {&sliceUvPipeline_, shaders::slice_uv_comp()},
-      {&treePipeline_, shaders::min_max_tree_comp()},
-      {&colorSumsPipeline_, shaders::light_color_sums_comp()},
-      {&shadowTestArgsPipeline_, shaders::shadow_test_args_comp()},
-      {&shadowTestPipeline_, shaders::shadow_test_comp()},
-      {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
-      {&interpolatePipeline_, shaders::interpolate_comp()},
-      {&unwarpPipeline_, shaders::unwarp_comp()},
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 5> pipelines{{
       {&scatteringLutPipeline_, shaders::scattering_lut_comp()},
       {&shadowBlocksPipeline_, shaders::shadow_blocks_comp()},
       {&debugBackgroundPipeline_, shaders::debug_background_comp()},
@@ -201,17 +194,20 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   for (const auto& [pipeline, spirv] : pipelines) {
     if (Outcome o = createComputePipeline(gpu, pipelineLayout_, spirv, *pipeline); !o) return o;
   }
-  // Sized for the march's threads per sample (constant_id 2, as in march.comp).
+  // The passes that size the march's rounds, for its threads per sample (constant_id 2, as in march.comp).
   const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> parts{{{kMarchPartsConstantId, marchParts_}}};
-  if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::march_args_comp(), parts, marchArgsPipeline_);
-      !o) {
-    return o;
+  const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 3> sizers{{
+      {&setupPipeline_, shaders::slice_setup_comp()},
+      {&shadowTestPipeline_, shaders::shadow_test_comp()},
+      {&refineIntensityPipeline_, shaders::refine_intensity_comp()},
+  }};
+  for (const auto& [pipeline, spirv] : sizers) {
+    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, spirv, parts, *pipeline); !o) return o;
   }
-  // The one-thread-per-pixel sizing only where the march runs one thread per sample (serialFixup).
+  // The one-thread-per-pixel fix-up only where the march runs one thread per sample (serialFixup).
   for (std::uint32_t serial = 0; serial <= (marchParts_ == 1 ? 1u : 0u); ++serial) {
     const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> walk{{{kFixupSerialConstantId, serial}}};
-    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::fixup_args_comp(), walk,
-                                              fixupArgsPipelines_[serial]);
+    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::unwarp_comp(), walk, unwarpPipelines_[serial]);
         !o) {
       return o;
     }
@@ -289,11 +285,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
   for (MappedBuffer& buffer : fixupReadback_) destroyBuffer(gpu, buffer);
   fixupReadback_.clear();
   if (pool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, pool_, gpu.allocator);
-  for (VkPipeline pipeline : {slicePipeline_, coordinatesPipeline_, refinePipeline_, sliceUvPipeline_, treePipeline_,
-                              colorSumsPipeline_,
-                              marchArgsPipeline_, shadowTestArgsPipeline_, shadowTestPipeline_, refineIntensityPipeline_,
-                              interpolatePipeline_, unwarpPipeline_, fixupArgsPipelines_[0], fixupArgsPipelines_[1],
-                              scatteringLutPipeline_, shadowBlocksPipeline_, debugBackgroundPipeline_,
+  for (VkPipeline pipeline : {setupPipeline_, shadowTestPipeline_, refineIntensityPipeline_, unwarpPipelines_[0],
+                              unwarpPipelines_[1], scatteringLutPipeline_, shadowBlocksPipeline_, debugBackgroundPipeline_,
                               debugSamplesPipeline_, debugFixupPipeline_}) {
     if (pipeline != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   }
@@ -559,67 +552,39 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
     passes.emplace_back(name);
   };
 
-  // The sample textures are rewritten every frame: earlier contents (and reads) are discarded.
+  // One barrier before the first pass: the sample textures are rewritten every frame (earlier
+  // contents and reads discarded), and so are the blocks and a rebuilt table; the counts start at
+  // zero once the previous frame's indirect reads are done.
+  BarrierBatch start;
+  const ImageUse discarded{VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0};
+  const ImageUse written{VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite};
   for (const OwnedImage* image : {&textures_.endPoints, &textures_.coordinates, &textures_.scattering,
                                   &textures_.interpolationSource, &textures_.sliceUv, &textures_.tree,
                                   &textures_.colorSums}) {
-    imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
-                 {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
+    start.image(image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, discarded, written);
   }
   if (!placeholderInitialised_) {
     for (const OwnedImage* image : {&scatteringLutPlaceholder_, &shadowBlocksPlaceholder_}) {
-      imageBarrier(gpu, cmd, image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
-                   {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
+      start.image(image->image, VK_IMAGE_ASPECT_COLOR_BIT, 0, discarded, written);
     }
     placeholderInitialised_ = true;
   }
-  // Rewritten by this frame's blocks pass: earlier contents (and reads) are discarded.
-  if (shadowBlocksUsed_) {
-    imageBarrier(gpu, cmd, shadowBlocks_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0},
-                 {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
-  }
-  if (buildTable) {
-    // Earlier frames' reads of the old table finish first; its contents are discarded.
-    imageBarrier(gpu, cmd, scatteringLut_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                 {VK_IMAGE_LAYOUT_UNDEFINED, kCompute, 0}, {VK_IMAGE_LAYOUT_GENERAL, kCompute, readWrite});
-  }
-  // The counts start at zero; the previous frame's indirect read must be done first.
-  memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
-                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+  if (shadowBlocksUsed_) start.image(shadowBlocks_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, discarded, written);
+  if (buildTable) start.image(scatteringLut_.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, discarded, written);
+  start.memory(kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
+               VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+  start.record(gpu, cmd);
   gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
   gpu.vk.vkCmdFillBuffer(cmd, textures_.marchList.buffer, 0, kMarchHeaderWords * sizeof(std::uint32_t), 0);
 
-  pass("epipolar_slice_end_points", slicePipeline_,
-       [&] { gpu.cmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-  pass("epipolar_coordinates", coordinatesPipeline_,
-       [&] { gpu.cmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
-  // Each slice's line in the shadow map and its min/max tree: only for the lights that march
-  // along one line (directional, spot), the tree only when the march uses it. Before the
-  // refinement, which leaves samples whose whole ray the tree shows in shadow out of the march.
-  if (light != LightType::Point) {
-    pass("epipolar_slice_uv", sliceUvPipeline_,
-         [&] { gpu.cmdDispatch(cmd, groups(slices, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1); });
-    if (constants.tree_enabled != 0) {
-      pass("epipolar_min_max_tree", treePipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
-    }
-    // With a light-colour texture, its sums along each line (the march's mean colours).
-    if (textures_.colorSamples != 0) {
-      pass("epipolar_light_color_sums", colorSumsPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
-    }
-  }
-  pass("epipolar_refine", refinePipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
+  // One workgroup per slice: its end points, line, tree, colour sums, coordinates and refinement
+  // (slice_setup.comp); its last group sizes the shadow test or the march's first round.
+  pass("epipolar_slice_setup", setupPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
   if (buildTable) {
     pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
       gpu.cmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
     });
   }
-  // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
-  // refinement adds.
-  const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
-  auto marchRound = [&](const char* argsName, const char* name) {
-    pass(argsName, marchArgsPipeline_, [&] { gpu.cmdDispatch(cmd, 1, 1, 1); });
-    indirectPass(name, march, textures_.marchList.buffer, 0);
-  };
   // A point light's samples are all walked through its six maps (no slice line): their blocks
   // first, so that the walks cross every block that decides its texels in one step.
   if (shadowBlocksUsed_ && light == LightType::Point) {
@@ -629,26 +594,26 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
                            groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP), shadowBlocks_.extent.height / side);
     });
   }
-  // With a tree, samples whose whole ray it shows in shadow get zero without being marched.
+  // With a tree, samples whose whole ray it shows in shadow get zero without being marched; the
+  // test's last group sizes the march's first round.
   if (light != LightType::Point && constants.tree_enabled != 0) {
-    pass("epipolar_shadow_test_args", shadowTestArgsPipeline_, [&] { gpu.cmdDispatch(cmd, 1, 1, 1); });
-    indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, 0);
+    indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, kShadowTestArgsOffset);
   }
-  marchRound("epipolar_march_args", "epipolar_march");
+  // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
+  // refinement adds.
+  const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
+  indirectPass("epipolar_march", march, textures_.marchList.buffer, kMarchRoundArgsOffset[0]);
   if (constants.intensity_refinement_threshold < 1.0f) {
     pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
-    marchRound("epipolar_march_args_refined", "epipolar_march_refined");
+    indirectPass("epipolar_march_refined", march, textures_.marchList.buffer, kMarchRoundArgsOffset[1]);
   }
-  pass("epipolar_interpolate", interpolatePipeline_,
-       [&] { gpu.cmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
-  pass("epipolar_unwarp", unwarpPipeline_, [&] {
+  // Interpolates along the slices and across them; its last group sizes the fix-up.
+  pass("epipolar_unwarp", unwarpPipelines_[serialFixup(marchParts_, light) ? 1 : 0], [&] {
     gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
-  pass("epipolar_fixup_args", fixupArgsPipelines_[serialFixup(marchParts_, light) ? 1 : 0],
-       [&] { gpu.cmdDispatch(cmd, 1, 1, 1); });
   // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
-  // enough rays to repay the blocks; fixup_args.comp decides, zero groups otherwise.
+  // enough rays to repay the blocks; the unwarp decides, zero groups otherwise.
   if (shadowBlocksUsed_ && light == LightType::Directional) {
     indirectPass("epipolar_shadow_blocks", shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
   }
@@ -682,8 +647,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   memoryBarrier(gpu, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                 VK_ACCESS_HOST_READ_BIT);
   fixupPending_[slot] = true;
-  // Later passes (composite, AOV copies) read the targets after a barrier of the caller's.
-  memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute, VK_ACCESS_SHADER_READ_BIT);
+  // Later passes (composite, AOV copies) read the targets after barriers of the caller's.
 }
 
 }  // namespace tyndall

@@ -107,23 +107,16 @@ class EpipolarTechnique final : public ScatteringTechnique {
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   bool commonReady_ = false;  // every pipeline but march's and the fix-up's light variants
-  VkPipeline slicePipeline_ = VK_NULL_HANDLE;
-  VkPipeline coordinatesPipeline_ = VK_NULL_HANDLE;
-  VkPipeline refinePipeline_ = VK_NULL_HANDLE;
-  VkPipeline sliceUvPipeline_ = VK_NULL_HANDLE;
-  VkPipeline treePipeline_ = VK_NULL_HANDLE;
-  VkPipeline colorSumsPipeline_ = VK_NULL_HANDLE;
-  VkPipeline marchArgsPipeline_ = VK_NULL_HANDLE;
-  VkPipeline shadowTestArgsPipeline_ = VK_NULL_HANDLE;
+  // slice_setup.comp, shadow_test.comp and refine_intensity.comp size the march's rounds (constant
+  // TYN_MARCH_PARTS); unwarp.comp sizes the fix-up ([0] a workgroup per pixel, [1] a thread per
+  // pixel: serialFixup).
+  VkPipeline setupPipeline_ = VK_NULL_HANDLE;
   VkPipeline shadowTestPipeline_ = VK_NULL_HANDLE;
   VkPipeline refineIntensityPipeline_ = VK_NULL_HANDLE;
   // march.comp specialised: [light type][light-colour texture].
   std::array<std::array<VkPipeline, 2>, 3> marchPipelines_{};
-  std::uint32_t marchParts_ = 1;  ///< march.comp's and march_args.comp's TYN_MARCH_PARTS
-  VkPipeline interpolatePipeline_ = VK_NULL_HANDLE;
-  VkPipeline unwarpPipeline_ = VK_NULL_HANDLE;
-  // fixup_args.comp specialised: [0] a workgroup per pixel, [1] a thread per pixel (serialFixup).
-  std::array<VkPipeline, 2> fixupArgsPipelines_{};
+  std::uint32_t marchParts_ = 1;  ///< march.comp's and the round sizers' TYN_MARCH_PARTS
+  std::array<VkPipeline, 2> unwarpPipelines_{};
   LightPipelines fixupPipelines_{};  // per light type, each walking as serialFixup says
   VkPipeline scatteringLutPipeline_ = VK_NULL_HANDLE;
   VkPipeline shadowBlocksPipeline_ = VK_NULL_HANDLE;

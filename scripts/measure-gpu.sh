@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The measurements behind the documents' GPU sections, in one run on a GPU, each part timed:
-#   tradeoffs    tyndall-bench's default sweep at 1920x1080 with a 2048² map (the issue's goals):
+#   tradeoffs    tyndall-bench's default sweep at 1920x1080 and 3840x2160 with a 2048² map:
 #                docs/TRADEOFFS-H200.md comes from its results.json, written again here (with the
 #                plots, which need matplotlib) by FROM=$GPU_OUT/keep/tradeoffs-results.json
 #                DOC=docs/TRADEOFFS-H200.md scripts/measure.sh tradeoffs
@@ -16,7 +16,7 @@
 # scripts/measure-gpu.sh DEST.
 # Usage: scripts/measure-gpu.sh [build-dir] (default: build)
 # Environment: PARTS (tradeoffs epipolar prefiltered cost), GPU_OUT (out/gpu), FRAMES (20);
-#   TRADEOFF_SIZES (1920x1080); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096);
+#   TRADEOFF_SIZES (1920x1080,3840x2160); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096);
 #   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); COST_SIZE (1920x1080),
 #   COST_MAP (2048), SPACINGS (the cost part's forests); SCENES (names, space-separated) passes
 #   through to the parts and the bench (each has its own default); PROFILES, BASES, REFERENCE_FRAMES
@@ -37,7 +37,7 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered cost}; do
   start=$SECONDS
   case "$part" in
     tradeoffs)
-      args=(--sizes "${TRADEOFF_SIZES:-1920x1080}" --shadow-maps 2048 --frames "$frames" --out "$out/tradeoffs")
+      args=(--sizes "${TRADEOFF_SIZES:-1920x1080,3840x2160}" --shadow-maps 2048 --frames "$frames" --out "$out/tradeoffs")
       [ -n "${SCENES:-}" ] && args+=(--scenes "${SCENES// /,}")
       "$build/samples/tyndall-bench" "${args[@]}" 2>>"$log" | tail -n 3 >>"$log"
       cp "$out/tradeoffs/results.json" "$out/keep/tradeoffs-results.json"

@@ -15,7 +15,7 @@ tradeoffs    tyndall-bench's default sweep (every sample scene but the analytic 
              pass), then its plots (scripts/plot-pareto.py, matplotlib); copies the document and
              plots into docs/, and for docs/TRADEOFFS.md its choice to
              docs/data/tradeoffs-lavapipe-choice.json (the profile table's test reads it).
-             SIZES (640x360), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default),
+             SIZES (1280x720: where users run it), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default),
              BENCH_OUT (out/tradeoffs); FROM=RESULTS.json writes the document again from an earlier
              run without measuring (FROM=docs/data/tradeoffs-lavapipe-results.json: the run
              docs/TRADEOFFS.md shows); DOC (docs/TRADEOFFS.md, whose choice is the code's profile
@@ -76,7 +76,7 @@ part_tradeoffs() {
   if [ -n "${FROM:-}" ]; then
     "$bench" --from "$FROM" --out "$out"
   else
-    local args=(--sizes "${SIZES:-640x360}" --shadow-maps "${SHADOW_MAPS:-2048}" --frames "${FRAMES:-20}" --out "$out")
+    local args=(--sizes "${SIZES:-1280x720}" --shadow-maps "${SHADOW_MAPS:-2048}" --frames "${FRAMES:-20}" --out "$out")
     [ -n "${SCENES:-}" ] && args+=(--scenes "$SCENES")
     "$bench" "${args[@]}"
   fi

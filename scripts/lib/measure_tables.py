@@ -8,6 +8,7 @@ tyndall-compare's error JSON: one subcommand per kind of row (measure.sh's parts
   reference-row TIMINGS SCENE SIZE
   memory-cell TIMINGS                                               ("technique MiB")
   spread EVALUATIONS_TSV [--prefix P] [--exclude-prefix P] [--title T]
+  bound DEFAULTS_TSV ONE_LOOKUP_TSV                                 (evaluate time over one lookup's per scene)
   point-variant SCENE OUT                                           (the scene with its spot light a point light)
   spot-tables ROWS_JSONL                                            (rows of epipolar-row plus "light")
 """
@@ -114,6 +115,28 @@ def spread(a):
               f"scenes, (max - min) / median {fraction * 100:.0f}% (issue 4 asks < 15%)")
 
 
+def bound(a):
+    """The prefiltered evaluation's time over the one-lookup evaluation's, per variant and scene, from
+    the two runs' evaluations TSVs of the cost part (issue 42 asks at most 2x on every scene)."""
+    def read(path):
+        with open(path) as f:
+            return {tuple(line.split("\t")[:2]): float(line.split("\t")[2]) for line in f if line.strip()}
+    defaults, one = read(a.defaults), read(a.one_lookup)
+    print("| scene | variant | evaluate ms | one lookup ms | ratio |")
+    print("|---|---|---|---|---|")
+    worst = {}
+    for (basis, scene), t in defaults.items():
+        if (basis, scene) not in one or one[(basis, scene)] <= 0:
+            continue
+        ratio = t / one[(basis, scene)]
+        print(f"| {scene} | {basis} | {ms(t)} | {ms(one[(basis, scene)])} | {ratio:.2f}x |")
+        if basis not in worst or ratio > worst[basis][1]:
+            worst[basis] = (scene, ratio)
+    print()
+    for basis, (scene, ratio) in worst.items():
+        print(f"{basis}: evaluate at most {ratio:.2f}x one lookup's ({scene}) (issue 42 asks at most 2x)")
+
+
 def point_variant(a):
     scene = load(a.scene)
     light = scene["light"]
@@ -196,6 +219,10 @@ def main():
     p.add_argument("--exclude-prefix", help="no scene whose name starts with this")
     p.add_argument("--title", help="the group's name in the line")
     p.set_defaults(run=spread)
+    p = sub.add_parser("bound", help=bound.__doc__)
+    p.add_argument("defaults")
+    p.add_argument("one_lookup")
+    p.set_defaults(run=bound)
     p = sub.add_parser("point-variant")
     p.add_argument("scene")
     p.add_argument("out")

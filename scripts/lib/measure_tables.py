@@ -8,6 +8,8 @@ tyndall-compare's error JSON: one subcommand per kind of row (measure.sh's parts
   reference-row TIMINGS SCENE SIZE
   memory-cell TIMINGS                                               ("technique MiB")
   spread EVALUATIONS_TSV [--prefix P] [--exclude-prefix P] [--title T]
+  bound DEFAULTS_TSV ONE_LOOKUP_TSV                                 (evaluate time over one lookup's per scene)
+  bench-bound RESULTS_CSV           (the same from one tyndall-bench run of the defaults and one lookup)
   point-variant SCENE OUT                                           (the scene with its spot light a point light)
   spot-tables ROWS_JSONL                                            (rows of epipolar-row plus "light")
 """
@@ -114,6 +116,60 @@ def spread(a):
               f"scenes, (max - min) / median {fraction * 100:.0f}% (issue 4 asks < 15%)")
 
 
+def bound(a):
+    """The prefiltered evaluation's time over the one-lookup evaluation's, per variant and scene, from
+    the two runs' evaluations TSVs of the cost part (issue 42 asks at most 2x on every scene)."""
+    def read(path):
+        with open(path) as f:
+            return {tuple(line.split("\t")[:2]): float(line.split("\t")[2]) for line in f if line.strip()}
+    defaults, one = read(a.defaults), read(a.one_lookup)
+    print("| scene | variant | evaluate ms | one lookup ms | ratio |")
+    print("|---|---|---|---|---|")
+    worst = {}
+    for (basis, scene), t in defaults.items():
+        if (basis, scene) not in one or one[(basis, scene)] <= 0:
+            continue
+        ratio = t / one[(basis, scene)]
+        print(f"| {scene} | {basis} | {ms(t)} | {ms(one[(basis, scene)])} | {ratio:.2f}x |")
+        if basis not in worst or ratio > worst[basis][1]:
+            worst[basis] = (scene, ratio)
+    print()
+    for basis, (scene, ratio) in worst.items():
+        print(f"{basis}: evaluate at most {ratio:.2f}x one lookup's ({scene}) (issue 42 asks at most 2x)")
+
+
+def bench_bound(a):
+    """bound's table from a tyndall-bench results.csv whose prefiltered configurations include one
+    lookup (--grid none --config prefiltered:... for each): every other configuration of a scene over
+    one lookup's, both timed in the same rounds; the maximum is the defaults' (issue 42 asks at most 2x)."""
+    import csv
+    one_lookup = "taps=1,short-rays=0,depth-bounds=0,segments=0,trim=0,texel-walk=0"
+    rows = {}
+    with open(a.results) as f:
+        for r in csv.DictReader(f):
+            if r["technique"] != "prefiltered":
+                continue
+            passes = dict(item.split("=") for item in r["pass_ms"].split(";"))
+            rows.setdefault(r["scene"], {})[r["parameters"]] = (float(passes["prefiltered_evaluate"]),
+                                                               float(r["relative_rmse"]))
+    print("| scene | configuration | evaluate ms (relative RMSE) | one lookup ms (relative RMSE) | ratio |")
+    print("|---|---|---|---|---|")
+    worst = None
+    for scene, runs in rows.items():
+        if one_lookup not in runs:
+            continue
+        t1, e1 = runs[one_lookup]
+        for parameters, (t, e) in runs.items():
+            if parameters == one_lookup:
+                continue
+            ratio = t / t1
+            print(f"| {scene} | `{parameters}` | {ms(t)} ({e * 100:.2f}%) | {ms(t1)} ({e1 * 100:.2f}%) | {ratio:.2f}x |")
+            if parameters == "defaults" and (worst is None or ratio > worst[1]):
+                worst = (scene, ratio)
+    if worst:
+        print(f"\ndefaults: evaluate at most {worst[1]:.2f}x one lookup's ({worst[0]}) (issue 42 asks at most 2x)")
+
+
 def point_variant(a):
     scene = load(a.scene)
     light = scene["light"]
@@ -196,6 +252,13 @@ def main():
     p.add_argument("--exclude-prefix", help="no scene whose name starts with this")
     p.add_argument("--title", help="the group's name in the line")
     p.set_defaults(run=spread)
+    p = sub.add_parser("bound", help=bound.__doc__)
+    p.add_argument("defaults")
+    p.add_argument("one_lookup")
+    p.set_defaults(run=bound)
+    p = sub.add_parser("bench-bound", help=bench_bound.__doc__)
+    p.add_argument("results")
+    p.set_defaults(run=bench_bound)
     p = sub.add_parser("point-variant")
     p.add_argument("scene")
     p.add_argument("out")

@@ -156,21 +156,57 @@ float tyn_pf_reference_weight(TynPfSegment g, float u) {
   return tyn_prefix_weight(g.sigma, tyn_pf_tap_tau(u, g.reference_sin, g.eta));
 }
 
+// What a trimmed segment leaves to the reconstruction: the columns [u_first, u_q] (the reference's
+// weights w_first, w_q there) whose reconstructed visibility counts `own` of the pixel's weight.
+// The segment's visibility is (lit + reconstructed · own) / total, or `decided` when total is 0.
+struct TynPfSegmentRest {
+  float lit;
+  float own;
+  float total;
+  float decided;
+  float u_first;
+  float u_q;
+  float w_first;
+  float w_q;
+  bool reconstruct;
+};
+
+// A rest with nothing to reconstruct: visibility `visibility`.
+TynPfSegmentRest tyn_pf_segment_decided(float visibility) {
+  TynPfSegmentRest rest;
+  rest.lit = 0.0;
+  rest.own = 0.0;
+  rest.total = 0.0;
+  rest.decided = visibility;
+  rest.u_first = 0.0;
+  rest.u_q = 0.0;
+  rest.w_first = 0.0;
+  rest.w_q = 0.0;
+  rest.reconstruct = false;
+  return rest;
+}
+
 // Trimmed segment (depth_bounds.h): segment [u_lo, u_hi] of a row loses the run of texels at each
 // end that the row decides on its own; the runs count 0 or 1 with the pixel's own weights, and the
 // columns between them are walked for up to pf.texel_walk_steps steps (depth_bounds.h "Texel walk"); what
-// the walk does not reach is reconstructed from the difference of the lookups at its edges.
-// Returns the segment's visibility.
-float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float row_fraction, TynPfSegment g,
-                             float depth_ray, float beta) {
+// the walk does not reach is left to the reconstruction (the rest returned), which the caller runs
+// for all segments of the pixel together.
+TynPfSegmentRest tyn_pf_trimmed_segment(ivec3 rows_columns, float row_fraction, TynPfSegment g, float depth_ray) {
   int columns = rows_columns.z;
   float n = float(columns);
   int c_lo = clamp(int(floor(g.u_lo * n)), 0, columns - 1);
   int c_hi = clamp(int(floor(g.u_hi * n)), c_lo, columns - 1);
   ivec2 c_lo_hi = ivec2(c_lo, c_hi);
+  // A segment whose whole prefix the row decides is that side, as the search from c_lo would find
+  // after O(log N) nodes: the running bounds at c_hi say it in one read of each row.
+  float prefix_side = tyn_depth_bounds_verdict(
+      tyn_depth_bounds_merge(imageLoad(depth_bounds_prefix, ivec2(c_hi, rows_columns.x)).xy,
+                             imageLoad(depth_bounds_prefix, ivec2(c_hi, rows_columns.y)).xy),
+      depth_ray);
+  if (prefix_side >= 0.0) return tyn_pf_segment_decided(prefix_side);
   float side_a = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, c_lo), depth_ray);
   int p = side_a < 0.0 ? c_lo : tyn_depth_bounds_run_end(rows_columns, c_lo, c_hi, depth_ray, side_a);
-  if (p > c_hi) return side_a;
+  if (p > c_hi) return tyn_pf_segment_decided(side_a);
   float side_b = tyn_depth_bounds_verdict(tyn_depth_bounds_node(rows_columns, 0u, c_hi), depth_ray);
   int q = side_b < 0.0 ? c_hi : tyn_depth_bounds_run_begin(rows_columns, p, c_hi, depth_ray, side_b);
   // The pixel's own weight of each part: the runs are exact, so their share should be the ray's,
@@ -181,42 +217,80 @@ float tyn_pf_trimmed_segment(uint set, float v, ivec3 rows_columns, float row_fr
   // The walk through the middle [p, q]: a step is a decided run or one undecided texel.
   int first = p;
   float own_first = own_p;
-  // Each step reads the column's texel bounds in the lookup's two rows once (level 0 of the tree,
-  // x = column): merged they decide a run, apart they decide each row of an undecided texel, whose
-  // rows are then interpolated by `row_fraction` as the bilinear lookup does.
-  for (uint step = 0u; step < pf.texel_walk_steps && first <= q; ++step) {
-    ivec2 texel0 = ivec2(first, rows_columns.x);
-    ivec2 texel1 = ivec2(first, rows_columns.y);
-    vec2 bounds0 = imageLoad(depth_bounds_texels, texel0).xy;
-    vec2 bounds1 = imageLoad(depth_bounds_texels, texel1).xy;
-    float side = tyn_depth_bounds_verdict(tyn_depth_bounds_merge(bounds0, bounds1), depth_ray);
-    int next = first + 1;
-    float visibility = side;
-    if (side >= 0.0) {
-      next = tyn_depth_bounds_run_end(rows_columns, first, q, depth_ray, side);
+  // One loop reads one node of the two rows' tree (both rows of the lookup) per iteration: at a
+  // step's first column (level 0, x = column) the merged bounds decide a run, apart they decide
+  // each row of an undecided texel, whose rows are then interpolated by `row_fraction` as the
+  // bilinear lookup does; inside a run the iterations are tyn_depth_bounds_run_end's, one node
+  // each. Pixels that run side by side then share iterations whether they walk texels or runs.
+  uint levels = tyn_depth_bounds_levels(columns);
+  int i = first;             // the node read next, of `level`
+  uint level = 0u;
+  float run_side = -1.0;     // the side of the run being searched; −1 at a step's first column
+  uint step = 0u;
+  for (uint iteration = 0u; iteration < pf.texel_walk_steps * 4u * TYN_DEPTH_BOUNDS_MAX_LEVELS &&
+                            step < pf.texel_walk_steps && first <= q; ++iteration) {
+    int next = -1;
+    float visibility = run_side;
+    if (run_side >= 0.0 && ((i << level) > q || i >= tyn_depth_bounds_level_nodes(columns, level))) {
+      next = q + 1;
     } else {
-      visibility = mix(tyn_pf_row_texel_visibility(texel0, bounds0, depth_ray),
-                       tyn_pf_row_texel_visibility(texel1, bounds1, depth_ray), row_fraction);
+      int x = tyn_depth_bounds_level_offset(columns, level) + i;
+      ivec2 texel0 = ivec2(x, rows_columns.x);
+      ivec2 texel1 = ivec2(x, rows_columns.y);
+      vec2 bounds0 = imageLoad(depth_bounds_texels, texel0).xy;
+      vec2 bounds1 = imageLoad(depth_bounds_texels, texel1).xy;
+      float side = tyn_depth_bounds_verdict(tyn_depth_bounds_merge(bounds0, bounds1), depth_ray);
+      if (run_side < 0.0 && side < 0.0) {
+        next = first + 1;
+        visibility = mix(tyn_pf_row_texel_visibility(texel0, bounds0, depth_ray),
+                         tyn_pf_row_texel_visibility(texel1, bounds1, depth_ray), row_fraction);
+      } else if (run_side < 0.0 || side == run_side) {
+        run_side = side;
+        i += 1;
+        while ((i & 1) == 0 && level + 1u < levels) {
+          i >>= 1;
+          level += 1u;
+        }
+      } else if (level == 0u) {
+        next = i;
+      } else {
+        i *= 2;
+        level -= 1u;
+      }
     }
-    float own_next = next > q ? own_q : tyn_pf_own_weight(g, tyn_pf_edge_u(g, c_lo_hi, next, n));
-    lit += visibility * (own_next - own_first);
-    first = next;
-    own_first = own_next;
+    if (next >= 0) {
+      float own_next = next > q ? own_q : tyn_pf_own_weight(g, tyn_pf_edge_u(g, c_lo_hi, next, n));
+      lit += visibility * (own_next - own_first);
+      first = next;
+      own_first = own_next;
+      step += 1u;
+      i = next;
+      level = 0u;
+      run_side = -1.0;
+    }
   }
+  TynPfSegmentRest rest = tyn_pf_segment_decided(side_a);
+  rest.lit = lit;
+  rest.total = g.own_hi - g.own_lo;
   if (first <= q) {
-    float u_first = tyn_pf_edge_u(g, c_lo_hi, first, n);
-    float u_q = tyn_pf_edge_u(g, c_lo_hi, q + 1, n);
-    float w_first = tyn_pf_reference_weight(g, u_first);
-    float w_q = tyn_pf_reference_weight(g, u_q);
-    if (w_q > w_first) {
-      lit += tyn_pf_part_visibility(set, v, n, u_first, u_q, w_first, w_q, depth_ray, beta) * (own_q - own_first);
-    }
+    rest.u_first = tyn_pf_edge_u(g, c_lo_hi, first, n);
+    rest.u_q = tyn_pf_edge_u(g, c_lo_hi, q + 1, n);
+    rest.w_first = tyn_pf_reference_weight(g, rest.u_first);
+    rest.w_q = tyn_pf_reference_weight(g, rest.u_q);
+    rest.own = own_q - own_first;
+    rest.reconstruct = rest.w_q > rest.w_first;
   }
-  return g.own_hi > g.own_lo ? lit / (g.own_hi - g.own_lo) : side_a;
+  return rest;
 }
 
 void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy;
+  // Invocations in runs of 8 (a CPU driver's SIMD lanes; a quarter of a GPU's warp) take 4 × 2
+  // pixel blocks rather than rows of 8: the closer the pixels, the more alike their rays' work.
+  uint lane = gl_LocalInvocationIndex;
+  uint block = lane >> 3u;
+  uvec2 pixel = gl_WorkGroupID.xy * TYN_PIXEL_GROUP_SIZE +
+                uvec2((block % (TYN_PIXEL_GROUP_SIZE / 4u)) * 4u + (lane & 3u),
+                      (block / (TYN_PIXEL_GROUP_SIZE / 4u)) * 2u + ((lane >> 2u) & 1u));
   if (any(greaterThanEqual(pixel, frame.output_extent))) return;
 
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
@@ -312,8 +386,14 @@ void main() {
     segment.u_hi = 0.0;
     segment.w_hi = 0.0;
     segment.own_hi = 0.0;
-    for (uint k = 0u; k < tap_count; ++k) {
-      if (trimmed) {
+    if (trimmed) {
+      // The segments first, then the reconstructions they leave, in one loop over those alone: a
+      // pixel pays for as many reconstructions as it needs, not one at every segment where some
+      // pixel that runs beside it needs one.
+      TynPfSegmentRest rests[TYN_PF_MAX_TAPS];
+      uint pending[TYN_PF_MAX_TAPS];
+      uint pending_count = 0u;
+      for (uint k = 0u; k < tap_count; ++k) {
         // Segment k starts where segment k − 1 ended (the ray's start for the first).
         segment.u_lo = segment.u_hi;
         segment.w_lo = segment.w_hi;
@@ -321,9 +401,20 @@ void main() {
         segment.u_hi = tap_u[k];
         segment.w_hi = tap_w[k];
         segment.own_hi = tyn_prefix_weight(segment.own_rate, tyn_pf_tap_tau(tap_u[k], reference_sin, eta));
-        visible += tyn_pf_trimmed_segment(set, v, rows_columns, row_fraction, segment, depth_ray, beta);
-        continue;
+        rests[k] = tyn_pf_trimmed_segment(rows_columns, row_fraction, segment, depth_ray);
+        if (rests[k].reconstruct) pending[pending_count++] = k;
       }
+      for (uint i = 0u; i < pending_count; ++i) {
+        uint k = pending[i];
+        TynPfSegmentRest rest = rests[k];
+        rests[k].lit += tyn_pf_part_visibility(set, v, columns, rest.u_first, rest.u_q, rest.w_first, rest.w_q,
+                                               depth_ray, beta) * rest.own;
+      }
+      for (uint k = 0u; k < tap_count; ++k) {
+        visible += rests[k].total > 0.0 ? rests[k].lit / rests[k].total : rests[k].decided;
+      }
+    }
+    for (uint k = 0u; !trimmed && k < tap_count; ++k) {
       float segment_verdict = tyn_pf_depth_bounds() ? tyn_pf_depth_bounds_verdict(tap_u[k], v, depth_ray) : -1.0;
       if (segment_verdict >= 0.0) {
         visible += segment_verdict;

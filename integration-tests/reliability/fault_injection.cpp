@@ -29,7 +29,6 @@ template <class Tag, class Pfn = typename Tag::Pfn>
 struct Wrap;
 
 // vkCmd*: counted and forwarded.
-struct CommandTag {};
 template <class Tag, class... A>
 struct Wrap<Tag, void(VKAPI_PTR*)(A...)> {
   static VKAPI_ATTR void VKAPI_CALL call(A... a) {

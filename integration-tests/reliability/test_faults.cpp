@@ -4,10 +4,9 @@
 // the back buffer is left as the host rendered it, and the next call succeeds. A lost device is
 // reported by the next record.
 #include <algorithm>
-#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <memory>
-#include <optional>
 #include <set>
 #include <string>
 #include <vector>

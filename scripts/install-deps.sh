@@ -11,6 +11,7 @@ packages=(
   nlohmann-json3-dev libtinygltf-dev libgtest-dev libgmock-dev
   python3  # scripts/measure.sh's tables, scripts/generate-forest.py
   python3-matplotlib  # scripts/plot-pareto.py: tyndall-bench's plots
+  clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer with AddressSanitizer and UBSan
 )
 
 missing=()

@@ -62,6 +62,7 @@ struct Device::Impl {
   bool printValidation = false;
   // The layer may call back from whichever thread makes a Vulkan call.
   std::mutex messagesMutex;
+  mutable std::mutex queueMutex;
   std::vector<std::string> messages;
 
   ~Impl() {
@@ -306,6 +307,8 @@ std::uint32_t Device::queueFamily() const { return impl_->queueFamily; }
 std::string Device::name() const { return impl_->name; }
 PFN_vkGetInstanceProcAddr Device::getInstanceProcAddr() const { return &vkGetInstanceProcAddr; }
 PFN_vkGetDeviceProcAddr Device::getDeviceProcAddr() const { return &vkGetDeviceProcAddr; }
+
+std::mutex& Device::queueMutex() const { return impl_->queueMutex; }
 
 const std::vector<std::string>& Device::validationMessages() const { return impl_->messages; }
 

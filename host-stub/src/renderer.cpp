@@ -160,7 +160,10 @@ struct Renderer::Impl {
   explicit Impl(Device& d) : device(d) {}
   ~Impl() {
     // Members are destroyed after this body, in reverse order: nothing may still be in use.
-    if (gpu.device != VK_NULL_HANDLE) vkDeviceWaitIdle(gpu.device);
+    if (gpu.device != VK_NULL_HANDLE) {
+      std::lock_guard<std::mutex> lock(device.queueMutex());  // waiting idle uses the queue too
+      vkDeviceWaitIdle(gpu.device);
+    }
   }
 
   bool init(const Scene& sceneIn, const RenderSettings& settingsIn, std::string& error);
@@ -220,6 +223,7 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
   gpu.physicalDevice = device.physicalDevice();
   gpu.device = device.device();
   gpu.queue = device.queue();
+  gpu.queueMutex = &device.queueMutex();
   gpu.queueFamily = device.queueFamily();
   vkGetPhysicalDeviceMemoryProperties(gpu.physicalDevice, &gpu.memory);
 
@@ -610,7 +614,10 @@ bool Renderer::renderFrame(std::string& error) {
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmdInfo;
-  if (!vk::check(vkQueueSubmit2(r.gpu.queue, 1, &submit, fence), "vkQueueSubmit2", error)) return false;
+  {
+    std::lock_guard<std::mutex> lock(*r.gpu.queueMutex);
+    if (!vk::check(vkQueueSubmit2(r.gpu.queue, 1, &submit, fence), "vkQueueSubmit2", error)) return false;
+  }
   slot.pending = true;
   r.lastSlot = slotIndex;
   ++r.frameIndex;

@@ -244,7 +244,10 @@ bool submitAndWait(const GpuContext& gpu, VkCommandPool pool,
   VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
   submit.commandBufferInfoCount = 1;
   submit.pCommandBufferInfos = &cmdInfo;
-  if (!check(vkQueueSubmit2(gpu.queue, 1, &submit, fence.get()), "vkQueueSubmit2", error)) return false;
+  {
+    std::lock_guard<std::mutex> lock(*gpu.queueMutex);
+    if (!check(vkQueueSubmit2(gpu.queue, 1, &submit, fence.get()), "vkQueueSubmit2", error)) return false;
+  }
   return check(vkWaitForFences(gpu.device, 1, &rawFence, VK_TRUE, UINT64_MAX), "vkWaitForFences", error);
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <mutex>
 #include <span>
 #include <string>
 #include <utility>
@@ -63,6 +64,7 @@ struct GpuContext {
   VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
   VkDevice device = VK_NULL_HANDLE;
   VkQueue queue = VK_NULL_HANDLE;
+  std::mutex* queueMutex = nullptr;  ///< held around every submission to `queue` (Device::queueMutex)
   std::uint32_t queueFamily = 0;
   VkPhysicalDeviceMemoryProperties memory{};
 };

@@ -109,6 +109,7 @@ struct Context::Impl {
   std::uint64_t lastTimedFrame = ~0ull;  // the latest frame whose time went to autoProfile
   // Size-dependent.
   OwnedImage scattering;
+  Outcome resizeFailure;  // why there are no size-dependent resources (until a resize succeeds)
   OwnedImage debugImage;  // created at the first frame that draws a debug view
   Stats stats;
 
@@ -300,7 +301,15 @@ Outcome Context::resize(VkExtent2D outputExtent) {
   if (outputExtent.width == impl_->extent.width && outputExtent.height == impl_->extent.height) return {};
   impl_->destroySizeDependent();
   impl_->extent = outputExtent;
-  if (Outcome o = impl_->createSizeDependent(); !o) return impl_->fail(o);
+  if (Outcome o = impl_->createSizeDependent(); !o) {
+    // Nothing half-built is kept, and no size counts as built: the next resize, to any size,
+    // builds again, and frames fail until one does.
+    impl_->destroySizeDependent();
+    impl_->extent = {};
+    impl_->resizeFailure = o;
+    return impl_->fail(o);
+  }
+  impl_->resizeFailure = {};
   return {};
 }
 
@@ -320,6 +329,11 @@ Outcome Context::record(VkCommandBuffer commandBuffer, const FrameDesc& frame) {
 }
 
 Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
+  if (!resizeFailure.ok()) {
+    Outcome o = resizeFailure;
+    o.message = "record: no output target since the last resize failed (" + o.message + "); resize again";
+    return fail(o);
+  }
   FrameSetup setup;
   if (Outcome o = prepareFrame(gpu, extent, frame, setup); !o) return fail(o);
   const bool computeComposite = compositeRunsInCompute(gpu, frame.color);
@@ -336,6 +350,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   }
 
   const std::uint32_t slot = static_cast<std::uint32_t>(stats.frameIndex % desc.maxFramesInFlight);
+  // The slot's previous frame is read before anything is recorded: a lost device shows there.
+  if (Outcome o = timer.readSlot(gpu, slot); !o) return fail(o);
   // Auto picks a profile from the times its earlier frames measured (auto_profile.h).
   const Profile profile = frame.profile == Profile::Auto
                               ? autoProfile.choose(stats.frameIndex, frame.autoBudgetMilliseconds)

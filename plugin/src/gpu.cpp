@@ -58,8 +58,8 @@ namespace {
 
 // One 2D image of `layers` layers with its memory and a view of every layer: a 2D view when
 // `array` is false (layers = 1), else a 2D_ARRAY view.
-Outcome createImageLayers(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers, bool array,
-                          VkImageUsageFlags usage, OwnedImage& out) {
+Outcome buildImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers, bool array,
+                   VkImageUsageFlags usage, OwnedImage& out) {
   out.format = format;
   out.extent = extent;
   VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
@@ -93,6 +93,15 @@ Outcome createImageLayers(const Gpu& gpu, VkFormat format, VkExtent2D extent, st
   return result == VK_SUCCESS ? Outcome{} : vkFailed("vkCreateImageView", result);
 }
 
+// A failed creation leaves nothing behind: callers create lazily where `image` is null, and a
+// half-built image would be taken for a whole one (and never freed) by the next frame.
+Outcome createImageLayers(const Gpu& gpu, VkFormat format, VkExtent2D extent, std::uint32_t layers, bool array,
+                          VkImageUsageFlags usage, OwnedImage& out) {
+  Outcome outcome = buildImage(gpu, format, extent, layers, array, usage, out);
+  if (!outcome) destroyImage(gpu, out);
+  return outcome;
+}
+
 }  // namespace
 
 Outcome createImage(const Gpu& gpu, VkFormat format, VkExtent2D extent, VkImageUsageFlags usage,
@@ -117,8 +126,8 @@ void destroyImage(const Gpu& gpu, OwnedImage& image) {
 
 namespace {
 
-Outcome createBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory,
-                     MappedBuffer& out) {
+Outcome buildBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory,
+                    bool map, MappedBuffer& out) {
   out.size = size;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   info.size = size;
@@ -132,22 +141,30 @@ Outcome createBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage
   if (!outcome) return outcome;
   out.bytes = requirements.size;
   result = gpu.vk.vkBindBufferMemory(gpu.device, out.buffer, out.memory, 0);
-  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkBindBufferMemory", result);
+  if (result != VK_SUCCESS) return vkFailed("vkBindBufferMemory", result);
+  if (!map) return {};
+  result = gpu.vk.vkMapMemory(gpu.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped);
+  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkMapMemory", result);
+}
+
+// As for images, a failed creation leaves nothing behind.
+Outcome createBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memory,
+                     bool map, MappedBuffer& out) {
+  Outcome outcome = buildBuffer(gpu, size, usage, memory, map, out);
+  if (!outcome) destroyBuffer(gpu, out);
+  return outcome;
 }
 
 }  // namespace
 
 Outcome createMappedBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage,
                            MappedBuffer& out) {
-  Outcome outcome = createBuffer(gpu, size, usage,
-                                 VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, out);
-  if (!outcome) return outcome;
-  VkResult result = gpu.vk.vkMapMemory(gpu.device, out.memory, 0, VK_WHOLE_SIZE, 0, &out.mapped);
-  return result == VK_SUCCESS ? Outcome{} : vkFailed("vkMapMemory", result);
+  return createBuffer(gpu, size, usage, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                      true, out);
 }
 
 Outcome createDeviceBuffer(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage, MappedBuffer& out) {
-  return createBuffer(gpu, size, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, out);
+  return createBuffer(gpu, size, usage, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, false, out);
 }
 
 void destroyBuffer(const Gpu& gpu, MappedBuffer& buffer) {
@@ -254,6 +271,9 @@ Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
 
 Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
                               VkPipeline& out, const VkSpecializationInfo* specialization) {
+  // Kept: a technique that compiles a list of pipelines and failed part-way compiles the list
+  // again, and would otherwise lose (leak) the ones it already had.
+  if (out != VK_NULL_HANDLE) return {};
   VkShaderModule module = VK_NULL_HANDLE;
   if (Outcome o = createShaderModule(gpu, spirv, module); !o) return o;
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

@@ -124,7 +124,8 @@ bool isDepthFormat(VkFormat format);
 
 Outcome createShaderModule(const Gpu& gpu, std::span<const std::uint32_t> spirv,
                            VkShaderModule& out);
-/// A compute pipeline from embedded SPIR-V (entry point "main"), optionally specialised.
+/// A compute pipeline from embedded SPIR-V (entry point "main"), optionally specialised. An `out`
+/// that already holds a pipeline is kept: retrying after a failure compiles only what is missing.
 Outcome createComputePipeline(const Gpu& gpu, VkPipelineLayout layout, std::span<const std::uint32_t> spirv,
                               VkPipeline& out, const VkSpecializationInfo* specialization = nullptr);
 

@@ -66,6 +66,10 @@ bool GpuTimer::harvest(const Gpu& gpu, std::uint32_t slot) {
   VkResult result = gpu.vk.vkGetQueryPoolResults(
       gpu.device, pool_, slot * kMaxPasses * 2, count, data.size() * sizeof(std::uint64_t), data.data(),
       2 * sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WITH_AVAILABILITY_BIT);
+  if (result == VK_ERROR_DEVICE_LOST && deviceLost_.ok()) {
+    deviceLost_ = vkFailed("vkGetQueryPoolResults", result);
+    deviceLost_.message += ": the device was lost; destroy the context with it";
+  }
   if (result != VK_SUCCESS && result != VK_NOT_READY) return false;
   for (std::uint32_t q = 0; q < count; ++q) {
     if (data[q * 2 + 1] == 0) return false;  // not finished yet
@@ -97,6 +101,11 @@ void GpuTimer::harvestAll(const Gpu& gpu) {
   std::sort(order.begin(), order.end(),
             [&](std::uint32_t a, std::uint32_t b) { return slots_[a].frameIndex < slots_[b].frameIndex; });
   for (std::uint32_t slot : order) harvest(gpu, slot);
+}
+
+Outcome GpuTimer::readSlot(const Gpu& gpu, std::uint32_t slot) {
+  if (supported()) harvest(gpu, slot);
+  return deviceLost_;
 }
 
 std::vector<FrameTimings> GpuTimer::takeCompleted() {

@@ -27,6 +27,9 @@ class GpuTimer {
 
   /// Reads every slot whose results are available, without waiting.
   void harvestAll(const Gpu& gpu);
+  /// Reads the slot's previous frame if it is available (beginFrame would); fails once the results
+  /// came back VK_ERROR_DEVICE_LOST, and from then on.
+  Outcome readSlot(const Gpu& gpu, std::uint32_t slot);
   std::vector<FrameTimings> takeCompleted();
   [[nodiscard]] const FrameTimings* latest() const { return haveLatest_ ? &latest_ : nullptr; }
 
@@ -47,6 +50,7 @@ class GpuTimer {
   std::vector<FrameTimings> completed_;
   FrameTimings latest_;
   bool haveLatest_ = false;
+  Outcome deviceLost_;
 };
 
 }  // namespace tyndall

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,9 @@ class Device {
   std::string name() const;  ///< physical device name, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
   PFN_vkGetInstanceProcAddr getInstanceProcAddr() const;
   PFN_vkGetDeviceProcAddr getDeviceProcAddr() const;
+  /// Held around every use of queue(): Vulkan requires a queue's users to synchronise, and
+  /// renderers on several threads (a render thread per view) share the one queue.
+  std::mutex& queueMutex() const;
 
   /// Validation messages (warnings and errors) received so far, each one line.
   const std::vector<std::string>& validationMessages() const;

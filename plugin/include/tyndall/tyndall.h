@@ -314,7 +314,8 @@ class Context {
   Context& operator=(const Context&) = delete;
 
   /// Rebuilds only the size-dependent resources. IMPORTANT: as for destruction, the GPU no
-  /// longer uses anything recorded by this context.
+  /// longer uses anything recorded by this context. A failed resize keeps neither size: `record`
+  /// fails until a later `resize` succeeds.
   Outcome resize(VkExtent2D outputExtent);
 
   /// Compiles every pipeline not compiled yet (ContextTuning::pipelineCreation); nothing to do
@@ -325,6 +326,8 @@ class Context {
   /// graphics queue). An invalid frame records nothing and returns the reason.
   /// IMPORTANT: when record is called for frame n, the GPU has finished frame n − maxFramesInFlight
   /// (the host waited on that frame's fence), as in any frames-in-flight loop.
+  /// A lost device shows in the timestamps record reads: from then on every record fails with
+  /// VK_ERROR_DEVICE_LOST and records nothing (destroy the context with the device).
   Outcome record(VkCommandBuffer commandBuffer, const FrameDesc& frame);
 
   /// Reads the timestamps of frames completed since they were recorded, without waiting.

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include "test_support.h"
 #include "tyndall_effect.h"
 #include "tyndall_host/renderer.h"
 #include "tyndall_host/scene.h"
@@ -21,21 +22,6 @@ namespace tyndall::test {
 namespace {
 
 constexpr int kFrames = 6;
-
-host::Device& validatedDevice() {
-  static std::unique_ptr<host::Device> device = [] {
-    host::DeviceOptions options;
-    options.validation = true;
-    std::string error;
-    std::unique_ptr<host::Device> created = host::Device::create(options, error);
-    if (!created) {
-      std::fprintf(stderr, "cannot create the validated test device: %s\n", error.c_str());
-      std::abort();
-    }
-    return created;
-  }();
-  return *device;
-}
 
 // One view: its scene, its renderer (command buffers, fences, images), its Tyndall context.
 struct View {

@@ -220,16 +220,9 @@ void BarrierBatch::record(const Gpu& gpu, VkCommandBuffer cmd) {
 
 void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                   std::uint32_t layer, ImageUse from, ImageUse to) {
-  VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-  barrier.srcAccessMask = from.access;
-  barrier.dstAccessMask = to.access;
-  barrier.oldLayout = from.layout;
-  barrier.newLayout = to.layout;
-  barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-  barrier.image = image;
-  barrier.subresourceRange = {aspect, 0, 1, layer, 1};
-  gpu.cmdPipelineBarrier(cmd, from.stage, to.stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
+  BarrierBatch one;
+  one.image(image, aspect, layer, from, to);
+  one.record(gpu, cmd);
 }
 
 bool isDepthFormat(VkFormat format) {

@@ -193,7 +193,10 @@ void BarrierBatch::memory(VkPipelineStageFlags srcStage, VkAccessFlags srcAccess
   hasMemory_ = true;
 }
 
-void BarrierBatch::image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to) {
+namespace {
+
+VkImageMemoryBarrier imageMemoryBarrier(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from,
+                                        ImageUse to) {
   VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   barrier.srcAccessMask = from.access;
   barrier.dstAccessMask = to.access;
@@ -203,7 +206,13 @@ void BarrierBatch::image(VkImage image, VkImageAspectFlags aspect, std::uint32_t
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
   barrier.subresourceRange = {aspect, 0, 1, layer, 1};
-  images_.push_back(barrier);
+  return barrier;
+}
+
+}  // namespace
+
+void BarrierBatch::image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to) {
+  images_.push_back(imageMemoryBarrier(image, aspect, layer, from, to));
   src_ |= from.stage;
   dst_ |= to.stage;
 }
@@ -220,9 +229,8 @@ void BarrierBatch::record(const Gpu& gpu, VkCommandBuffer cmd) {
 
 void imageBarrier(const Gpu& gpu, VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                   std::uint32_t layer, ImageUse from, ImageUse to) {
-  BarrierBatch one;
-  one.image(image, aspect, layer, from, to);
-  one.record(gpu, cmd);
+  const VkImageMemoryBarrier barrier = imageMemoryBarrier(image, aspect, layer, from, to);
+  gpu.cmdPipelineBarrier(cmd, from.stage, to.stage, 0, 0, nullptr, 0, nullptr, 1, &barrier);
 }
 
 bool isDepthFormat(VkFormat format) {

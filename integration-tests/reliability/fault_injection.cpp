@@ -4,6 +4,8 @@
 #include <tuple>
 #include <type_traits>
 
+#include "vk_dispatch.h"
+
 namespace tyndall::test {
 
 namespace {
@@ -154,22 +156,9 @@ VKAPI_ATTR VkResult VKAPI_CALL getQueryPoolResults(VkDevice d, VkQueryPool pool,
   X(vkDestroyDescriptorPool, "descriptor pool")           \
   X(vkDestroyQueryPool, "query pool")                     \
   X(vkDestroyPipeline, "pipeline")
+// Every command the plugin's dispatch table loads, and dynamic rendering's pair (loaded beside it).
 #define TYNDALL_COMMAND_CALLS(X) \
-  X(vkCmdResetQueryPool)         \
-  X(vkCmdWriteTimestamp)         \
-  X(vkCmdPipelineBarrier)        \
-  X(vkCmdBindPipeline)           \
-  X(vkCmdBindDescriptorSets)     \
-  X(vkCmdPushConstants)          \
-  X(vkCmdDispatch)               \
-  X(vkCmdDispatchIndirect)       \
-  X(vkCmdFillBuffer)             \
-  X(vkCmdCopyBuffer)             \
-  X(vkCmdDraw)                   \
-  X(vkCmdSetViewport)            \
-  X(vkCmdSetScissor)             \
-  X(vkCmdBlitImage)              \
-  X(vkCmdClearColorImage)        \
+  TYNDALL_COMMAND_FUNCTIONS(X)   \
   X(vkCmdBeginRendering)         \
   X(vkCmdEndRendering)
 

@@ -207,27 +207,36 @@ class SkippingEffect final : public host::PostProcessEffect {
   std::uint64_t commands = 0;
 };
 
-TEST_F(Faults, RecordFailsWithNothingRecordedAndTheNextFrameWorks) {
-  FaultInjector& injector = FaultInjector::get();
-  host::Scene scene = loadTestScene("spot-lamp");
+// The host these tests render with: `scene` at kHostExtent with a 256² map, `effect` in its
+// post-process stack; null (and `error`) when it cannot be created.
+constexpr VkExtent2D kHostExtent{48, 27};
+std::unique_ptr<host::Renderer> hostWith(const char* scene, bool aovImages, SkippingEffect& effect,
+                                         std::string& error) {
   host::RenderSettings settings;
-  settings.width = 48;
-  settings.height = 27;
+  settings.width = kHostExtent.width;
+  settings.height = kHostExtent.height;
   settings.shadowMapSize = 256;
   settings.backBufferFormat = kBackBufferFormat;
-  settings.aovImages = true;
-  std::string error;
-  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(validatedDevice(), scene, settings, error);
-  ASSERT_TRUE(renderer) << error;
+  settings.aovImages = aovImages;
+  std::unique_ptr<host::Renderer> renderer =
+      host::Renderer::create(validatedDevice(), loadTestScene(scene), settings, error);
+  if (renderer) renderer->addPostProcess(&effect);
+  return renderer;
+}
+
+TEST_F(Faults, RecordFailsWithNothingRecordedAndTheNextFrameWorks) {
+  FaultInjector& injector = FaultInjector::get();
   SkippingEffect effect;
-  renderer->addPostProcess(&effect);
+  std::string error;
+  std::unique_ptr<host::Renderer> renderer = hostWith("spot-lamp", true, effect, error);
+  ASSERT_TRUE(renderer) << error;
 
   // The back buffer as the host leaves it without Tyndall.
   host::ImageRgba32f hostOnly;
   ASSERT_TRUE(renderer->renderFrame(error)) << error;
   ASSERT_TRUE(renderer->readBackBuffer(hostOnly, error)) << error;
 
-  const ContextDesc desc = faultyContextDesc({settings.width, settings.height});
+  const ContextDesc desc = faultyContextDesc(kHostExtent);
   // A first frame of the epipolar technique with a spot light and a debug view: its pipelines,
   // its textures, the fix-up list, the scattering table and the debug image.
   std::uint64_t counts[2] = {};
@@ -301,18 +310,11 @@ TEST_F(Faults, RecordAfterAFailedResizeFailsUntilAResizeWorks) {
 
 TEST_F(Faults, ADeviceLostMidFrameFailsTheNextRecord) {
   FaultInjector& injector = FaultInjector::get();
-  host::Scene scene = loadTestScene("pillars");
-  host::RenderSettings settings;
-  settings.width = 48;
-  settings.height = 27;
-  settings.shadowMapSize = 256;
-  settings.backBufferFormat = kBackBufferFormat;
-  std::string error;
-  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(validatedDevice(), scene, settings, error);
-  ASSERT_TRUE(renderer) << error;
   SkippingEffect effect;
-  renderer->addPostProcess(&effect);
-  Result<std::unique_ptr<Context>> created = Context::create(faultyContextDesc({settings.width, settings.height}));
+  std::string error;
+  std::unique_ptr<host::Renderer> renderer = hostWith("pillars", false, effect, error);
+  ASSERT_TRUE(renderer) << error;
+  Result<std::unique_ptr<Context>> created = Context::create(faultyContextDesc(kHostExtent));
   ASSERT_TRUE(created) << created.outcome().message;
   effect.context = created.value().get();
   for (int i = 0; i < 3; ++i) {

@@ -98,6 +98,21 @@ part_tradeoffs() {
   echo "wrote $doc and docs/pareto-*.svg/.png from $out"
 }
 
+# The Reference render NAME.{exr,json} of scene FILE at W x H with a MAP² map over FRAMES frames, its
+# path without the extension left in `ref`: REFERENCE_FROM's (an earlier run's folder, which must
+# hold it) when set, else rendered into the caller's $out with the caller's $render.
+reference_render() {
+  local name="$1" file="$2" w="$3" h="$4" map="$5" frames="$6"
+  if [ -n "${REFERENCE_FROM:-}" ]; then
+    ref="$REFERENCE_FROM/$name"
+    [ -f "$ref.exr" ] && [ -f "$ref.json" ] || { echo "no Reference render $ref.{exr,json}" >&2; exit 1; }
+  else
+    ref="$out/$name"
+    "$render" --pipelines on-first-use "$file" --technique reference --width "$w" --height "$h" \
+      --shadow-map-size "$map" --frames "$frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
+  fi
+}
+
 # prefiltered: per scene the Reference (or REFERENCE_FROM's), then every variant against it.
 part_prefiltered() {
   local render compare out size w h map frames extra evaluations entry file scene ref basis run
@@ -119,14 +134,7 @@ part_prefiltered() {
   fi
   for entry in ${SCENES:-pillars fence forest window-room analytic-spheres analytic-boxes analytic-mixed}; do
     file="$(scene_file "$entry")"; scene="$(scene_name "$entry")"
-    if [ -n "${REFERENCE_FROM:-}" ]; then
-      ref="$REFERENCE_FROM/$scene-$size-reference"
-      [ -f "$ref.exr" ] && [ -f "$ref.json" ] || { echo "no Reference render $ref.{exr,json}" >&2; exit 1; }
-    else
-      ref="$out/$scene-$size-reference"
-      "$render" --pipelines on-first-use "$file" --technique reference --width "$w" --height "$h" \
-        --shadow-map-size "$map" --frames "$frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
-    fi
+    reference_render "$scene-$size-reference" "$file" "$w" "$h" "$map" "$frames"
     for basis in ${BASES:-moments4_64 moments4_128 moments6_64 moments6_96 moments6_192 fourier32}; do
       run="$out/$scene-$size-$basis"
       "$render" --pipelines on-first-use "$file" --technique prefiltered --prefiltered "basis=$basis${extra:+,$extra}" \
@@ -244,14 +252,7 @@ part_spot() {
       fi
       for size in ${SIZES:-320x180 480x270}; do
         w="$(width_of "$size")"; h="$(height_of "$size")"
-        if [ -n "${REFERENCE_FROM:-}" ]; then
-          ref="$REFERENCE_FROM/$scene-$light-$size-reference"
-          [ -f "$ref.exr" ] && [ -f "$ref.json" ] || { echo "no Reference render $ref.{exr,json}" >&2; exit 1; }
-        else
-          ref="$out/$scene-$light-$size-reference"
-          "$render" --pipelines on-first-use "$file" --profile reference --width "$w" --height "$h" \
-            --shadow-map-size "$map" --frames 1 --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
-        fi
+        reference_render "$scene-$light-$size-reference" "$file" "$w" "$h" "$map" 1
         for profile in ${PROFILES:-high balanced performance}; do
           run="$out/$scene-$light-$size-$profile"
           keys="EPIPOLAR_${profile^^}"

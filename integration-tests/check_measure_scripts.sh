@@ -18,7 +18,10 @@ LD_LIBRARY_PATH="$work/bundle/lib" GPU_OUT="$work/gpu" PARTS="epipolar prefilter
 keep="$work/gpu/keep"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 grep -q '^| pillars | 32x18 | 256² | performance | ' "$keep/epipolar.md" || fail "no epipolar row in $keep/epipolar.md"
-[ "$(wc -l <"$keep/epipolar-rows.jsonl")" -eq 1 ] || fail "expected one row in $keep/epipolar-rows.jsonl"
+# EPIPOLAR_RESOLUTIONS' default (full half): the profile again at half resolution.
+grep -q '^| pillars | 32x18 | 256² | performance half | ' "$keep/epipolar.md" ||
+  fail "no half-resolution epipolar row in $keep/epipolar.md"
+[ "$(wc -l <"$keep/epipolar-rows.jsonl")" -eq 2 ] || fail "expected two rows in $keep/epipolar-rows.jsonl"
 grep -q '^| pillars | moments4_64 | [0-9.]*% | ' "$keep/prefiltered.md" || fail "no prefiltered row in $keep/prefiltered.md"
 grep -q '^### 32x18, 256² map' "$keep/prefiltered.md" || fail "no size heading in $keep/prefiltered.md"
 grep -q '^epipolar: [0-9]* s$' "$keep/measure-gpu.log" || fail "no epipolar timing in the log"

@@ -16,7 +16,8 @@
 # scripts/measure-gpu.sh DEST.
 # Usage: scripts/measure-gpu.sh [build-dir] (default: build)
 # Environment: PARTS (tradeoffs epipolar prefiltered cost), GPU_OUT (out/gpu), FRAMES (20);
-#   TRADEOFF_SIZES (1920x1080,3840x2160); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096);
+#   TRADEOFF_SIZES (1920x1080,3840x2160); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096),
+#   EPIPOLAR_RESOLUTIONS (full half);
 #   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); COST_SIZE (1920x1080),
 #   COST_MAP (2048), SPACINGS (the cost part's forests); SCENES (names, space-separated) passes
 #   through to the parts and the bench (each has its own default); PROFILES, BASES, REFERENCE_FRAMES
@@ -45,6 +46,7 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered cost}; do
     epipolar)
       BENCH_OUT="$out/epipolar" FRAMES="$frames" REFERENCE_FRAMES="${REFERENCE_FRAMES:-12}" \
         SIZES="${EPIPOLAR_SIZES:-1280x720 1920x1080}" SHADOW_MAPS="${EPIPOLAR_MAPS:-2048 4096}" \
+        RESOLUTIONS="${EPIPOLAR_RESOLUTIONS:-full half}" \
         scripts/measure.sh epipolar "$build" >"$out/keep/epipolar.md" 2>>"$log"
       cp "$out/epipolar/rows.jsonl" "$out/keep/epipolar-rows.jsonl"
       ;;

@@ -165,6 +165,7 @@ std::vector<BadCase> badEpipolarSettings() {
       {"epipolar.fixupSteps", [](EpipolarSettings& s) { s.fixupSteps = 257; }},
       {"epipolar.coloredStep", [](EpipolarSettings& s) { s.coloredStep = 0; }},
       {"epipolar.coloredStep", [](EpipolarSettings& s) { s.coloredStep = 24; }},
+      {"epipolar.resolution", [](EpipolarSettings& s) { s.resolution = static_cast<ScatteringResolution>(3); }},
   };
   std::vector<BadCase> cases;
   for (const auto& [field, mutate] : fields) {

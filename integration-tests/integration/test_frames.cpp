@@ -322,6 +322,43 @@ TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
   expectNoValidationMessages();
 }
 
+// Textures a technique retired (a new parameter's size) are released by the frames that follow,
+// whichever technique runs them: a context that stops running the prefiltered technique after
+// changing its map size does not keep the old maps.
+TEST(Profiles, RetiredTexturesAreReleasedWhicheverTechniqueRuns) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  host::RenderSettings settings;
+  settings.width = 64;
+  settings.height = 36;
+  settings.shadowMapSize = 256;
+  settings.framesInFlight = 2;
+  std::string error;
+  host::Device& device = validatedDevice();
+  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
+  ASSERT_TRUE(renderer) << error;
+  std::unique_ptr<samples::TyndallEffect> effect =
+      samples::TyndallEffect::create(device, settings, Profile::Balanced, error, PipelineCreation::OnFirstUse);
+  ASSERT_TRUE(effect) << error;
+  renderer->addPostProcess(effect.get());
+  effect->setTechnique(Technique::Prefiltered);
+  PrefilteredSettings maps;
+  maps.rows = maps.columns = 64;
+  effect->setPrefilteredSettings(maps);
+  ASSERT_TRUE(renderer->renderFrame(error)) << error;
+  maps.rows = maps.columns = 128;  // retires the 64 × 64 maps
+  effect->setPrefilteredSettings(maps);
+  ASSERT_TRUE(renderer->renderFrame(error)) << error;
+  const std::uint64_t held = effect->context().stats().deviceMemoryBytes;
+  effect->setTechnique(Technique::Reference);
+  for (std::uint32_t frame = 0; frame <= settings.framesInFlight; ++frame) {
+    ASSERT_TRUE(renderer->renderFrame(error)) << error;
+  }
+  renderer->waitIdle();
+  EXPECT_EQ(effect->context().stats().technique, Technique::Reference);
+  EXPECT_LT(effect->context().stats().deviceMemoryBytes, held);
+  expectNoValidationMessages();
+}
+
 // Profile::Auto against the plugin's own timestamps: budgets that force each profile. One context
 // throughout (Auto keeps what it measured when the budget changes, as in an engine). An unbounded
 // budget must climb to High and a budget no frame fits must end on Performance; on the way down Auto

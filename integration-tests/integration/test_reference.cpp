@@ -1,6 +1,8 @@
 // The Reference technique against the CPU double-precision analytic reference, and the
 // composite it leaves in the back buffer.
 #include <cmath>
+#include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -63,19 +65,27 @@ INSTANTIATE_TEST_SUITE_P(AnalyticScenes, ReferenceVsAnalytic,
                          });
 
 // out = in · T + L_in: the back buffer with the effect against the back buffer without it, on both
-// paths: compute (the back buffer a storage image) and the fragment blend (no STORAGE usage).
-class Composite : public ::testing::TestWithParam<bool> {};
+// paths: compute (the back buffer a storage image) and the fragment blend (no STORAGE usage). At
+// reduced resolution (the epipolar technique's half and quarter targets) the L_in AOV is the
+// upsampled L_in, the composite's own.
+class Composite : public ::testing::TestWithParam<std::tuple<bool, ScatteringResolution>> {};
 
 TEST_P(Composite, BackBufferIsInTimesTransmittancePlusInScattering) {
-  const bool storage = GetParam();
+  const auto [storage, resolution] = GetParam();
   const host::Scene scene = loadTestScene("analytic-mixed");
   samples::RenderOptions options = referenceOptions();
   options.width = 64;
   options.height = 36;
   options.shadowMapSize = 512;
   options.storageBackBuffer = storage;
+  if (resolution != ScatteringResolution::Full) {
+    options.technique = Technique::Epipolar;
+    options.epipolar = EpipolarSettings{};
+    options.epipolar->resolution = resolution;
+  }
   const samples::RenderResult with = renderWithAovs(scene, options);
   EXPECT_EQ(with.stats.composite, storage ? CompositePath::Compute : CompositePath::Fragment);
+  EXPECT_EQ(with.stats.scatteringResolution, resolution);
 
   host::RenderSettings settings;
   settings.width = options.width;
@@ -112,8 +122,14 @@ TEST_P(Composite, BackBufferIsInTimesTransmittancePlusInScattering) {
   expectNoValidationMessages();
 }
 
-INSTANTIATE_TEST_SUITE_P(Paths, Composite, ::testing::Bool(),
-                         [](const auto& path) { return path.param ? "compute" : "fragment"; });
+INSTANTIATE_TEST_SUITE_P(Paths, Composite,
+                         ::testing::Combine(::testing::Bool(),
+                                            ::testing::Values(ScatteringResolution::Full, ScatteringResolution::Half,
+                                                              ScatteringResolution::Quarter)),
+                         [](const auto& param_info) {
+                           return std::string(std::get<0>(param_info.param) ? "compute_" : "fragment_") +
+                                  to_string(std::get<1>(param_info.param));
+                         });
 
 }  // namespace
 }  // namespace tyndall::test

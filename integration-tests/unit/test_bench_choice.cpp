@@ -10,6 +10,7 @@
 
 #include "scratch_path.h"
 #include "report.h"
+#include "sweep.h"
 
 namespace tyndall::samples::bench {
 namespace {
@@ -373,6 +374,24 @@ TEST(BenchReport, ResultsKeepTheFloorsTheCompositeAndTheCountsAndOldFilesLoad) {
   EXPECT_EQ(read[0].composite, "none");
   EXPECT_EQ(read[0].dispatches, 0u);
   EXPECT_EQ(read[0].barriers, 0u);
+}
+
+// The default sweep measures reduced resolutions of both techniques, so that the profile table can
+// choose them where they are on the Pareto front.
+TEST(BenchGrid, TheDefaultSweepHasReducedResolutions) {
+  std::vector<Configuration> grid;
+  std::string error;
+  ASSERT_TRUE(builtInGrid("default", grid, error)) << error;
+  std::map<std::string, int> reduced;
+  for (const Configuration& c : grid) {
+    const ScatteringResolution r = c.epipolar ? c.epipolar->resolution
+                                   : c.prefiltered ? c.prefiltered->resolution
+                                                   : ScatteringResolution::Full;
+    if (r != ScatteringResolution::Full) ++reduced[c.techniqueName() + " " + to_string(r)];
+  }
+  EXPECT_GE(reduced["epipolar half"], 2);
+  EXPECT_GE(reduced["epipolar quarter"], 1);
+  EXPECT_GE(reduced["prefiltered half"], 1);
 }
 
 }  // namespace

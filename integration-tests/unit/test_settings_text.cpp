@@ -30,11 +30,12 @@ TEST(SettingsText, EveryEpipolarFieldRoundTrips) {
   s.epipoleFixupHeightFraction = 0.05f;
   s.fixupSteps = 48;
   s.coloredStep = 8;
+  s.resolution = ScatteringResolution::Half;
   const std::string text = describe(s);
   EXPECT_EQ(text,
             "slices=1024,samples=512,improved-placement=0,initial-step=32,refinement=0.07,intensity-refinement=0.15,"
             "density=3.5,tree=0,max-tree-step=64,bilateral=0.1,fixup-weight=0.2,slice-contrast=0.15,epipole-radius=24,"
-            "epipole-fraction=0.05,fixup-steps=48,colored-step=8");
+            "epipole-fraction=0.05,fixup-steps=48,colored-step=8,resolution=half");
   EpipolarSettings back;
   std::string error;
   ASSERT_TRUE(parseEpipolarSettings(text, back, error)) << error;
@@ -60,11 +61,12 @@ TEST(SettingsText, EveryPrefilteredFieldRoundTrips) {
   s.segmentedReconstruction = false;
   s.trimmedSegments = false;
   s.texelWalkSteps = 3;
+  s.resolution = ScatteringResolution::Quarter;
   const std::string text = describe(s);
   EXPECT_EQ(text,
             "basis=fourier32,rectification=projective,rows=256,columns=256,filtered=0,spacing=mean-theta,taps=1,"
             "prefix-sums=thread-per-row,beta=0.25,epipole-block=0,short-rays=5,depth-bounds=0,segments=0,trim=0,"
-            "texel-walk=3");
+            "texel-walk=3,resolution=quarter");
   PrefilteredSettings back;
   std::string error;
   ASSERT_TRUE(parsePrefilteredSettings(text, back, error)) << error;
@@ -89,6 +91,10 @@ TEST(SettingsText, BadTextSaysWhatIsWrong) {
   EXPECT_FALSE(parsePrefilteredSettings("basis=moments5", p, error));
   EXPECT_EQ(error, "--prefiltered: bad value for basis (got 'moments5')");
   EXPECT_FALSE(parsePrefilteredSettings("beta=", p, error));
+  EXPECT_FALSE(parseEpipolarSettings("resolution=third", e, error));
+  EXPECT_EQ(error, "--epipolar: bad value for resolution (got 'third')");
+  EXPECT_FALSE(parsePrefilteredSettings("resolution=2", p, error));
+  EXPECT_EQ(error, "--prefiltered: bad value for resolution (got '2')");
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "prefiltered/prefiltered_technique.h"
 #include "profiles.h"
 #include "reference/reference_technique.h"
+#include "retire_queue.h"
 #include "technique_selection.h"
 #include "timing.h"
 
@@ -76,6 +77,8 @@ constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // The largest point-light map whose texel walk stays within lavapipe's loop budget (measured,
 // docs/REFERENCE.md "Loop budget on lavapipe"); the frame's note says so above it on a CPU driver.
 constexpr std::uint32_t kCpuDriverPointLightMapLimit = 4096;
+// Frames a retired L_in target is kept as a spare (about two seconds at 60 Hz).
+constexpr std::uint32_t kSpareTargetFrames = 120;
 
 }  // namespace
 
@@ -108,7 +111,15 @@ struct Context::Impl {
   AutoProfile autoProfile;
   std::uint64_t lastTimedFrame = ~0ull;  // the latest frame whose time went to autoProfile
   // Size-dependent.
+  /// The L_in target, at `resolution` (targetExtentFor). A frame of another resolution retires it
+  /// (or destroys it, when no frame has used it yet); a retired target serves again as a spare for
+  /// kSpareTargetFrames frames, so that a context switching between profiles of two resolutions
+  /// (Auto) does not allocate at every switch, and holds one target once it has settled.
   OwnedImage scattering;
+  ScatteringResolution resolution = ScatteringResolution::Full;
+  bool scatteringUsed = false;
+  RetireQueue<OwnedImage> retiredTargets;
+  OwnedImage aovTarget;  // full resolution, for the AOVs of a reduced target; at the first such frame
   Outcome resizeFailure;  // why there are no size-dependent resources (until a resize succeeds)
   OwnedImage debugImage;  // created at the first frame that draws a debug view
   Stats stats;
@@ -127,6 +138,9 @@ struct Context::Impl {
   Outcome ensurePipelines(Technique technique, const FrameDesc& frame);
   Outcome createSizeDependent();
   void destroySizeDependent();
+  /// Makes `scattering` the target of `wanted`'s resolution (a spare or a new image; on failure the
+  /// old one stays).
+  Outcome useResolution(ScatteringResolution wanted);
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
@@ -196,12 +210,37 @@ Outcome Context::Impl::ensurePipelines(Technique technique, const FrameDesc& fra
 }
 
 Outcome Context::Impl::createSizeDependent() {
-  return createImage(gpu, kTargetFormat, extent, kTargetUsage, scattering);
+  scatteringUsed = false;
+  return createImage(gpu, kTargetFormat, targetExtentFor(extent, resolution), kTargetUsage, scattering);
+}
+
+Outcome Context::Impl::useResolution(ScatteringResolution wanted) {
+  if (wanted == resolution) return {};
+  const VkExtent2D size = targetExtentFor(extent, wanted);
+  OwnedImage next;
+  if (std::optional<OwnedImage> spare = retiredTargets.take([&](const OwnedImage& image) {
+        return image.extent.width == size.width && image.extent.height == size.height;
+      })) {
+    next = *spare;
+  } else if (Outcome o = createImage(gpu, kTargetFormat, size, kTargetUsage, next); !o) {
+    return o;
+  }
+  if (scatteringUsed) {
+    retiredTargets.retire(stats.frameIndex, scattering);
+  } else {
+    destroyImage(gpu, scattering);
+  }
+  scattering = next;
+  scatteringUsed = false;
+  resolution = wanted;
+  return {};
 }
 
 void Context::Impl::destroySizeDependent() {
   for (ScatteringTechnique* technique : techniques) technique->destroySizeDependent(gpu);
   destroyImage(gpu, debugImage);
+  destroyImage(gpu, aovTarget);
+  retiredTargets.destroyAll([&](OwnedImage& image) { destroyImage(gpu, image); });
   destroyImage(gpu, scattering);
 }
 
@@ -406,11 +445,28 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     report(Severity::Info, "debug view image allocated");
   }
+  // The L_in target at the technique's resolution; a frame without one keeps the current target.
+  if (runs != nullptr) {
+    if (Outcome o = useResolution(runs->resolution(frame, choice)); !o) return fail(o);
+  }
+  retiredTargets.release(stats.frameIndex, desc.maxFramesInFlight + kSpareTargetFrames,
+                         [&](OwnedImage& image) { destroyImage(gpu, image); });
+  for (ScatteringTechnique* t : techniques) t->releaseRetired(gpu, stats.frameIndex, desc.maxFramesInFlight);
+  const bool reduced = resolution != ScatteringResolution::Full;
+  if (reduced && aovTarget.image == VK_NULL_HANDLE &&
+      (!frame.scatteringOutput.empty() || !frame.transmittanceOutput.empty())) {
+    if (Outcome o = createImage(gpu, kTargetFormat, extent, kTargetUsage, aovTarget); !o) return fail(o);
+    report(Severity::Info, "full-resolution AOV image allocated (the L_in target is at reduced resolution)");
+  }
+  setup.constants.target_extent = glm::uvec2(scattering.extent.width, scattering.extent.height);
+  setup.constants.target_stride = static_cast<std::uint32_t>(resolution);
+  setup.constants.target_offset = setup.constants.target_stride / 2;
   TechniqueReport techniqueReport;
   if (runs != nullptr) {
-    const FrameInputs inputs{frame, choice, extent, slot, stats.frameIndex, desc.maxFramesInFlight};
+    const FrameInputs inputs{frame, choice, extent, scattering.extent, slot, stats.frameIndex, desc.maxFramesInFlight};
     if (Outcome o = runs->prepare(gpu, inputs, techniqueReport); !o) return fail(o);
     note += techniqueReport.note;
+    if (reduced) note += std::string("; L_in at ") + to_string(resolution) + " resolution, upsampled by the composite";
   }
 
   stats.requestedProfile = frame.profile;
@@ -422,12 +478,13 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   stats.prefiltered = techniqueReport.prefiltered;
   stats.pointLightWalkOverCpuLoopLimit = overLoopLimit;
   stats.debugViewDrawn = drawsDebugView;
+  stats.scatteringResolution = resolution;
   stats.passesRecorded.clear();
   gpu.dispatches = 0;
   gpu.barriers = 0;
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
   // Counts the slot's previous frame left, whichever technique runs now.
-  for (ScatteringTechnique* t : techniques) t->readBack(slot, extent, stats);
+  for (ScatteringTechnique* t : techniques) t->readBack(slot, stats);
 
   if (!setup.attenuates) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
@@ -445,6 +502,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.techniqueNote = note;
     std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
     recordScattering(cmd, slot, frame, runs);
+    scatteringUsed = true;
     recordAovs(cmd, slot, frame, true);
     // The host's depth buffer, which recordScattering acquired: read by the technique, the
     // composite and the T AOV's pass.
@@ -590,7 +648,7 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
                   {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
   }
   acquire.record(gpu, cmd);
-  technique.record(gpu, cmd, RecordTarget{slot, bindings, extent, timer, stats.passesRecorded});
+  technique.record(gpu, cmd, RecordTarget{slot, bindings, scattering.extent, timer, stats.passesRecorded});
   if (singlePass != nullptr) {
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back(singlePass);
@@ -628,12 +686,14 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
     imageBarrier(gpu, cmd, output.image, VK_IMAGE_ASPECT_COLOR_BIT, output.arrayLayer, transferWrite,
                  hostAfter(output));
   };
-  auto blit = [&](VkImage source, const ImageRef& output, VkImageLayout layout) {
+  // `from`: the part of `source` that covers the output (a debug view at reduced resolution is
+  // scaled up, each of its texels to its block).
+  auto blit = [&](VkImage source, VkExtent2D from, const ImageRef& output, VkImageLayout layout) {
     VkImageBlit region{};
     region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.srcOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
+    region.srcOffsets[1] = {static_cast<std::int32_t>(from.width), static_cast<std::int32_t>(from.height), 1};
     region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, output.arrayLayer, 1};
-    region.dstOffsets[1] = region.srcOffsets[1];
+    region.dstOffsets[1] = {static_cast<std::int32_t>(extent.width), static_cast<std::int32_t>(extent.height), 1};
     gpu.vk.vkCmdBlitImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output.image, layout, 1, &region,
                           VK_FILTER_NEAREST);
   };
@@ -643,29 +703,39 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
     gpu.vk.vkCmdClearColorImage(cmd, output.image, layout, &color, 1, &range);
   };
 
-  // The target as the composite left it; then as each step below leaves it.
-  ImageUse target{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, 0};
+  // The full-resolution image the AOVs are copied from: the L_in target itself at full resolution,
+  // else the AOV image, which first receives L_in upsampled as the composite added it. `target`:
+  // how the composite (or the previous frame) left it; then as each step below leaves it.
+  const bool reduced = resolution != ScatteringResolution::Full;
+  const OwnedImage& full = reduced ? aovTarget : scattering;
+  ImageUse target = reduced ? ImageUse{VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0}
+                            : ImageUse{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, 0};
+  const ImageUse computeWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT};
+  const VkImageLayout depthLayout = sampledDepthLayout(frame.depth.layout);
   for (const ImageRef* output : {&frame.scatteringOutput, &frame.transmittanceOutput}) {
     if (output->empty()) continue;
     const bool isTransmittance = output == &frame.transmittanceOutput;
     write(*output, [&](VkImageLayout layout) {
       if (!fromTargets) return clear(*output, layout, isTransmittance ? 1.0f : 0.0f);
-      if (isTransmittance) {
-        // L_in's reads (the composite's, its copy's) finish before T overwrites it.
-        const ImageUse computeWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                                    VK_ACCESS_SHADER_WRITE_BIT};
-        imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                     {VK_IMAGE_LAYOUT_UNDEFINED, target.stage, 0}, computeWrite);
-        composite.recordTransmittance(gpu, cmd, slot, constants[slot].buffer, frame.depth,
-                                      sampledDepthLayout(frame.depth.layout), scattering.view, extent);
+      if (isTransmittance || reduced) {
+        // L_in's reads (the composite's, its copy's) finish before the image is overwritten.
+        imageBarrier(gpu, cmd, full.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, target.stage, 0},
+                     computeWrite);
+        if (isTransmittance) {
+          composite.recordTransmittance(gpu, cmd, slot, constants[slot].buffer, frame.depth, depthLayout, full.view,
+                                        extent);
+        } else {
+          composite.recordScatteringAov(gpu, cmd, slot, constants[slot].buffer, frame.depth, depthLayout,
+                                        scattering.view, full.view, extent);
+        }
         target = computeWrite;
       }
-      // The blit reads the target in the layout transfers prefer.
+      // The blit reads the image in the layout transfers prefer.
       const ImageUse transferRead{VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
                                   VK_ACCESS_TRANSFER_READ_BIT};
-      imageBarrier(gpu, cmd, scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, target, transferRead);
+      imageBarrier(gpu, cmd, full.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, target, transferRead);
       target = transferRead;
-      blit(scattering.image, *output, layout);
+      blit(full.image, extent, *output, layout);
     });
   }
   if (!frame.debugOutput.empty()) {
@@ -676,7 +746,7 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
       imageBarrier(gpu, cmd, debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                    {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
                    {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});
-      blit(debugImage.image, frame.debugOutput, layout);
+      blit(debugImage.image, scattering.extent, frame.debugOutput, layout);
     });
   }
   timer.endPass(gpu, cmd);

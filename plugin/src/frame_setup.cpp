@@ -27,7 +27,9 @@ static_assert(offsetof(gpu::FrameConstants, light_type) == 8 * 64 + 64 + 4 * 32 
 static_assert(offsetof(gpu::FrameConstants, shadow_map_size) == 8 * 64 + 64 + 4 * 32 + 16 + 12);
 static_assert(offsetof(gpu::FrameConstants, output_extent) == 8 * 64 + 64 + 4 * 32 + 32);
 static_assert(offsetof(gpu::FrameConstants, has_light_color) == 8 * 64 + 64 + 4 * 32 + 32 + 12);
-static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 32 + 3 * 16,
+static_assert(offsetof(gpu::FrameConstants, target_extent) == 8 * 64 + 64 + 4 * 32 + 48);
+static_assert(offsetof(gpu::FrameConstants, target_offset) == 8 * 64 + 64 + 4 * 32 + 48 + 12);
+static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 32 + 4 * 16,
               "FrameConstants must match its std140 layout");
 static_assert(kMaxMediumComponents == gpu::TYN_MAX_MEDIUM_COMPONENTS);
 static_assert(kMaxShadowMaps == gpu::TYN_MAX_SHADOW_MAPS);
@@ -185,6 +187,9 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   if (frame.prefiltered != nullptr) {
     if (Outcome o = validatePrefilteredSettings(*frame.prefiltered); !o) return o;
   }
+  if (frame.resolution && !isScatteringResolution(*frame.resolution)) {
+    return invalid("resolution is not a ScatteringResolution");
+  }
 
   // Camera.
   if (!finite(frame.camera.view) || !invertible(toMat(frame.camera.view))) {
@@ -283,6 +288,9 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   out.scatters = lightOn && glm::length(scattering) > 0.0f;
   out.attenuates = glm::length(extinction) > 0.0f;
   k.output_extent = glm::uvec2(outputExtent.width, outputExtent.height);
+  k.target_extent = k.output_extent;  // full resolution until the context sets the technique's
+  k.target_stride = 1;
+  k.target_offset = 0;
   k.has_light_color = frame.lightColor.empty() ? 0u : 1u;
   return {};
 }

@@ -43,6 +43,15 @@ const char* to_string(CompositePath path) noexcept {
   return "unknown";
 }
 
+const char* to_string(ScatteringResolution resolution) noexcept {
+  switch (resolution) {
+    case ScatteringResolution::Full: return "full";
+    case ScatteringResolution::Half: return "half";
+    case ScatteringResolution::Quarter: return "quarter";
+  }
+  return "unknown";
+}
+
 const char* to_string(TechniqueChange change) noexcept {
   switch (change) {
     case TechniqueChange::None: return "none";

@@ -13,6 +13,19 @@
 
 namespace tyndall {
 
+/// Whether `resolution` is one of ScatteringResolution's values.
+constexpr bool isScatteringResolution(ScatteringResolution resolution) {
+  return resolution == ScatteringResolution::Full || resolution == ScatteringResolution::Half ||
+         resolution == ScatteringResolution::Quarter;
+}
+
+/// The L_in target's extent for an output extent: one texel per `resolution` × `resolution` block,
+/// a partial block at the right and bottom edges included.
+constexpr VkExtent2D targetExtentFor(VkExtent2D output, ScatteringResolution resolution) {
+  const auto stride = static_cast<std::uint32_t>(resolution);
+  return {(output.width + stride - 1) / stride, (output.height + stride - 1) / stride};
+}
+
 /// What every technique is created with.
 struct TechniqueResources {
   VkSampler nearest = VK_NULL_HANDLE;  ///< nearest, clamp to edge
@@ -26,6 +39,7 @@ struct FrameInputs {
   const FrameDesc& frame;
   const ProfileChoice& choice;  ///< the profile row; FrameDesc's settings override its parameters
   VkExtent2D extent{};          ///< the output's
+  VkExtent2D targetExtent{};    ///< the L_in target's (resolution(), targetExtentFor)
   std::uint32_t slot = 0;       ///< the frame-in-flight slot
   std::uint64_t frameIndex = 0;
   std::uint32_t framesInFlight = 1;
@@ -43,7 +57,7 @@ struct TechniqueReport {
 struct RecordTarget {
   std::uint32_t slot = 0;
   const ScatteringBindings& bindings;
-  VkExtent2D extent{};
+  VkExtent2D extent{};  ///< the L_in target's (FrameInputs::targetExtent)
   GpuTimer& timer;
   std::vector<std::string>& passes;
 };
@@ -54,6 +68,11 @@ class ScatteringTechnique {
 
   /// Size-independent resources: layouts, descriptor sets, constant buffers (no pipeline).
   virtual Outcome create(const Gpu& gpu, const TechniqueResources& resources) = 0;
+  /// The resolution of the frame's L_in target: FrameDesc::resolution, else FrameDesc's settings',
+  /// else the profile row's; full by default (the Reference).
+  [[nodiscard]] virtual ScatteringResolution resolution(const FrameDesc& /*frame*/, const ProfileChoice& /*choice*/) const {
+    return ScatteringResolution::Full;
+  }
   /// Compiles every pipeline (context creation with PipelineCreation::AtCreate, Context::warmUp).
   virtual Outcome createPipelines(const Gpu& gpu) = 0;
   /// Compiles what this frame needs and is not compiled yet; `compiled` says whether anything was.
@@ -71,7 +90,11 @@ class ScatteringTechnique {
   [[nodiscard]] virtual bool drawsDebugViews() const { return false; }
   /// Reads what the slot's previous frame counted on the GPU (it has completed when the slot comes
   /// round again) into `stats`; nothing by default.
-  virtual void readBack(std::uint32_t /*slot*/, VkExtent2D /*extent*/, Stats& /*stats*/) {}
+  virtual void readBack(std::uint32_t /*slot*/, Stats& /*stats*/) {}
+  /// Destroys what earlier frames retired (textures of other sizes) once no frame in flight can use
+  /// it. Called every frame for every technique, whichever runs, so that a technique that stopped
+  /// running does not keep what it retired.
+  virtual void releaseRetired(const Gpu& /*gpu*/, std::uint64_t /*frameIndex*/, std::uint32_t /*framesInFlight*/) {}
   /// Drops what depends on the output's size (the GPU idle).
   virtual void destroySizeDependent(const Gpu& /*gpu*/) {}
   virtual void destroy(const Gpu& gpu) = 0;

@@ -87,13 +87,21 @@ bool builtInGrid(const std::string& name, std::vector<Configuration>& out, std::
                                 "slices=256,samples=256,intensity-refinement=0.15,fixup-steps=64"}) {
       texts.push_back(std::string("epipolar:") + stepped);
     }
+    // L_in at reduced resolution (upsampled by the composite): the unwarp, the fix-up and the
+    // prefiltered evaluation run per 2×2 or 4×4 block, for shafts wider than a block.
+    for (const char* reduced : {"slices=128,samples=128,intensity-refinement=0.15,fixup-steps=64,resolution=half",
+                                "slices=128,samples=128,intensity-refinement=0.15,fixup-steps=64,resolution=quarter",
+                                "slices=256,samples=256,intensity-refinement=0.15,resolution=half",
+                                "slices=512,samples=256,intensity-refinement=0.15,resolution=half"}) {
+      texts.push_back(std::string("epipolar:") + reduced);
+    }
     // Prefiltered: the recommended 6-moment variant, the cheapest 4-moment one and the Fourier
     // baseline at the default rectified size, the default at a quarter of the texels, and two
     // segments with 16 walk steps (as accurate as the defaults for 15% less evaluation on lavapipe,
     // docs/PREFILTERED.md "Fewer taps, more steps": a candidate default for a GPU's sweep to
     // weigh); "full": every storage variant and a sixteenth.
     std::vector<const char*> prefiltered{"basis=moments6_64", "basis=moments4_64", "basis=fourier32",
-                                         "rows=512,columns=512", "taps=2,texel-walk=16"};
+                                         "rows=512,columns=512", "taps=2,texel-walk=16", "resolution=half"};
     if (name == "full") {
       for (const char* more : {"basis=moments4_128", "basis=moments6_96", "basis=moments6_192", "rows=256,columns=256"}) {
         prefiltered.push_back(more);

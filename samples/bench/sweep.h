@@ -41,8 +41,9 @@ std::string configurationName(const std::string& technique, const std::string& p
 /// syntax; "epipolar:" alone: the defaults) or "reference".
 bool parseConfiguration(const std::string& text, Configuration& out, std::string& error);
 
-/// The built-in parameter grids: "default" (what docs/TRADEOFFS.md sweeps: 12 epipolar and 4
-/// prefiltered configurations), "full" (26, for a GPU), "quick" (two, for a smoke test) or "none".
+/// The built-in parameter grids: "default" (what docs/TRADEOFFS.md sweeps: 23 epipolar and 6
+/// prefiltered configurations, reduced resolutions among them), "full" (41, for a GPU), "quick"
+/// (two, for a smoke test) or "none".
 bool builtInGrid(const std::string& name, std::vector<Configuration>& out, std::string& error);
 
 struct Row;

@@ -24,6 +24,7 @@ namespace {
 // An option's names for the values it picks: the library's where it has them.
 const char* optionName(Profile profile) { return to_string(profile); }
 const char* optionName(Technique technique) { return to_string(technique); }
+const char* optionName(ScatteringResolution resolution) { return to_string(resolution); }
 const char* optionName(PipelineCreation creation) {
   return creation == PipelineCreation::AtCreate ? "at-create" : "on-first-use";
 }
@@ -50,6 +51,9 @@ std::string usage() {
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect] [--no-storage-back-buffer]\n"
          "         [--epipolar KEY=VALUE[,KEY=VALUE...]] [--prefiltered KEY=VALUE[,KEY=VALUE...]]\n"
          "         [--debug-view samples|fixup FILE.png] [--march-threads N] [--pipelines at-create|on-first-use]\n"
+         "         [--resolution full|half|quarter]\n"
+         "  --resolution: compute L_in at full, half or quarter resolution instead of the profile's (the\n"
+         "    composite upsamples it; the Reference always runs at full)\n"
          "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
          "  --no-storage-back-buffer: create the back buffer without STORAGE usage, so Tyndall composites\n"
          "    with a fragment pass instead of a compute pass writing the back buffer in place\n"
@@ -116,6 +120,15 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
         error = "--shadow-map-size must be a power of two in [16, 16384] (got '" + v + "')";
         return false;
       }
+    } else if (arg == "--resolution") {
+      if (!value(v)) return false;
+      ScatteringResolution resolution{};
+      if (!parseName(v, {ScatteringResolution::Full, ScatteringResolution::Half, ScatteringResolution::Quarter},
+                     resolution)) {
+        error = "--resolution must be one of: full, half, quarter (got '" + v + "')";
+        return false;
+      }
+      options.resolution = resolution;
     } else if (arg == "--march-threads") {
       if (!value(v)) return false;
       if (!parseUint(v, 1, 64, options.marchThreadsPerSample) ||
@@ -222,6 +235,7 @@ bool renderSceneWith(host::Device& device, const host::Scene& scene, const Rende
     effect->setAutoBudget(options.autoBudgetMilliseconds);
     effect->setTechnique(options.technique);
     effect->setEpipolarSettings(options.epipolar);
+    effect->setResolution(options.resolution);
     effect->setDebugView(options.debugView);
     effect->setPrefilteredSettings(options.prefiltered);
     renderer->addPostProcess(effect);
@@ -308,6 +322,7 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["timestampsSupported"] = result.stats.timestampsSupported;
   json["passesRecorded"] = result.stats.passesRecorded;
   json["composite"] = to_string(result.stats.composite);
+  json["scatteringResolution"] = to_string(result.stats.scatteringResolution);
   json["dispatches"] = result.stats.dispatches;
   json["barriers"] = result.stats.barriers;
   nlohmann::ordered_json passes = nlohmann::ordered_json::object();

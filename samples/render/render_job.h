@@ -22,6 +22,7 @@ struct RenderOptions {
   Technique technique = Technique::None; ///< --technique: overrides the profile's choice
   std::optional<EpipolarSettings> epipolar;  ///< --epipolar: instead of the profile's
   std::optional<PrefilteredSettings> prefiltered;  ///< --prefiltered: instead of the profile's
+  std::optional<ScatteringResolution> resolution;  ///< --resolution: instead of the profile's
   std::uint32_t width = 640;
   std::uint32_t height = 360;
   std::uint32_t shadowMapSize = 0;      ///< 0: the scene's

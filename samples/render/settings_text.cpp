@@ -45,6 +45,17 @@ constexpr std::array<const char*, 3> kRectificationNames{"automatic", "non-linea
 constexpr std::array<const char*, 3> kSpacingNames{"mean-theta", "reference-ray", "fastest-ray"};
 constexpr std::array<const char*, 3> kPrefixSumNames{"row-parallel", "thread-per-row", "workgroup-scan"};
 
+// ScatteringResolution by name ("full", "half", "quarter": the library's to_string).
+bool pickResolution(const std::string& value, ScatteringResolution& out) {
+  for (ScatteringResolution r : {ScatteringResolution::Full, ScatteringResolution::Half, ScatteringResolution::Quarter}) {
+    if (value == to_string(r)) {
+      out = r;
+      return true;
+    }
+  }
+  return false;
+}
+
 // The shortest text that reads back as the same float ("0.15", not "0.150000006").
 std::string floatText(float value) {
   std::array<char, 32> text{};
@@ -92,13 +103,14 @@ void append(std::string& out, const std::string& key, const std::string& value) 
 
 const char* const kEpipolarKeys =
     "slices, samples, improved-placement (0|1), initial-step, refinement, intensity-refinement, density, tree (0|1), "
-    "max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius, epipole-fraction, fixup-steps, colored-step";
+    "max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius, epipole-fraction, fixup-steps, colored-step, "
+    "resolution (full|half|quarter)";
 const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "
     "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row|workgroup-scan), "
     "beta (adaptive|a number in [0, 1]), epipole-block, short-rays, depth-bounds (0|1), segments (0|1), trim (0|1), "
-    "texel-walk";
+    "texel-walk, resolution (full|half|quarter)";
 
 bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
   std::uint32_t value = 0;
@@ -121,6 +133,11 @@ bool parseFloat(const std::string& text, float& out) {
 bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::string& error) {
   EpipolarSettings s;
   const bool ok = forEachItem(text, [&](const std::string& key, const std::string& value) {
+    if (key == "resolution") {
+      const bool parsed = pickResolution(value, s.resolution);
+      if (!parsed) error = "--epipolar: bad value for resolution (got '" + value + "')";
+      return parsed;
+    }
     const auto field = std::find_if(kEpipolarFields.begin(), kEpipolarFields.end(),
                                     [&](const EpipolarField& f) { return key == f.key; });
     if (field == kEpipolarFields.end()) {
@@ -181,6 +198,8 @@ bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out,
     } else if (key == "segments") {
       parsed = parseUint(value, 0, 1, u);
       s.segmentedReconstruction = u != 0;
+    } else if (key == "resolution") {
+      parsed = pickResolution(value, s.resolution);
     } else if (key == "trim") {
       parsed = parseUint(value, 0, 1, u);
       s.trimmedSegments = u != 0;
@@ -211,6 +230,7 @@ std::string describe(const EpipolarSettings& settings) {
       append(out, field.key, settings.*field.boolMember ? "1" : "0");
     }
   }
+  if (settings.resolution != defaults.resolution) append(out, "resolution", to_string(settings.resolution));
   return out.empty() ? "defaults" : out;
 }
 
@@ -238,6 +258,7 @@ std::string describe(const PrefilteredSettings& s) {
   }
   if (s.trimmedSegments != d.trimmedSegments) append(out, "trim", s.trimmedSegments ? "1" : "0");
   if (s.texelWalkSteps != d.texelWalkSteps) append(out, "texel-walk", std::to_string(s.texelWalkSteps));
+  if (s.resolution != d.resolution) append(out, "resolution", to_string(s.resolution));
   return out.empty() ? "defaults" : out;
 }
 

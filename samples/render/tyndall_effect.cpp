@@ -143,6 +143,7 @@ bool TyndallEffect::record(VkCommandBuffer cmd, const host::PostProcessInputs& i
   frame.autoBudgetMilliseconds = autoBudget_;
   frame.technique = technique_;
   if (epipolar_) frame.epipolar = &*epipolar_;
+  frame.resolution = resolution_;
   if (!aovOutputs_) {
     frame.scatteringOutput = {};
     frame.transmittanceOutput = {};

@@ -30,6 +30,8 @@ class TyndallEffect final : public host::PostProcessEffect {
   void setTechnique(Technique technique) { technique_ = technique; }
   /// Parameters of the epipolar technique instead of the profile's (empty: the profile's).
   void setEpipolarSettings(const std::optional<EpipolarSettings>& settings) { epipolar_ = settings; }
+  /// The resolution of L_in instead of the profile's or the settings' (empty: theirs).
+  void setResolution(std::optional<ScatteringResolution> resolution) { resolution_ = resolution; }
   /// A debug view into the host's debug AOV (needs RenderSettings::aovImages).
   void setDebugView(DebugView view) { debugView_ = view; }
   /// Parameters of the prefiltered technique instead of the profile's (empty: the profile's).
@@ -50,6 +52,7 @@ class TyndallEffect final : public host::PostProcessEffect {
   float autoBudget_ = 4.0f;
   Technique technique_ = Technique::None;
   std::optional<EpipolarSettings> epipolar_;
+  std::optional<ScatteringResolution> resolution_;
   DebugView debugView_ = DebugView::None;
   std::optional<PrefilteredSettings> prefiltered_;
   bool aovOutputs_ = true;

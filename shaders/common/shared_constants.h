@@ -38,7 +38,7 @@ TYN_CONST uint TYN_REFERENCE_BINDING_COUNT = 5u;
 TYN_CONST uint TYN_COMPOSITE_BINDING_TARGET = 2u;
 TYN_CONST uint TYN_COMPOSITE_BINDING_COUNT = 3u;
 // The compute composite's back buffer (storage, read and written in place).
-TYN_CONST uint TYN_COMPOSITE_BINDING_COLOR = 3u;
+TYN_CONST uint TYN_COMPOSITE_BINDING_COLOR = 3u;  // also the L_in AOV upsample's output
 TYN_CONST uint TYN_COMPOSITE_COMPUTE_BINDING_COUNT = 4u;
 
 // One component of the medium (std140: 32 bytes, C++ the same).
@@ -76,8 +76,13 @@ struct FrameConstants {
   uint shadow_map_count;   // 1, or 6 for a point light
   uint shadow_map_size;    // texels along each side of every map
   uvec2 output_extent;     // pixels
-  uint pad2;               // (a frame without in-scattering runs no technique)
+  uint pad2;
   uint has_light_color;    // 1 when a light-colour texture is bound (common/light_color.glsl)
+  // The L_in target (ScatteringResolution): target pixel p stands for output pixel
+  // p · target_stride + target_offset (view_ray.glsl's tyn_output_pixel); stride 1 at full resolution.
+  uvec2 target_extent;
+  uint target_stride;      // 1, 2 or 4
+  uint target_offset;      // target_stride / 2: the block's pixel right and below its centre
 };
 
 TYN_END

@@ -37,6 +37,13 @@ TynViewRay tyn_view_ray_ndc(vec2 ndc, float depth) {
 // NDC of a pixel's centre (integer pixel coordinates).
 vec2 tyn_pixel_ndc(uvec2 pixel) { return (vec2(pixel) + 0.5) / vec2(frame.output_extent) * 2.0 - 1.0; }
 
+// The output pixel that a pixel of the L_in target stands for (FrameConstants target_*): itself at
+// full resolution; at half or quarter one pixel of each 2×2 or 4×4 block, whose depth and ray the
+// technique computes L_in for, so that the composite's upsample knows where each value belongs.
+uvec2 tyn_output_pixel(uvec2 target_pixel) {
+  return min(target_pixel * frame.target_stride + frame.target_offset, frame.output_extent - 1u);
+}
+
 // pixel: integer pixel coordinates; depth: the host's depth-buffer value there.
 TynViewRay tyn_view_ray(uvec2 pixel, float depth) { return tyn_view_ray_ndc(tyn_pixel_ndc(pixel), depth); }
 

@@ -14,6 +14,7 @@ layout(set = 0, binding = TYN_BINDING_DEPTH) uniform sampler2D depth_buffer;
 layout(set = 0, binding = TYN_COMPOSITE_BINDING_TARGET) uniform sampler2D in_scattering;
 
 #include "common/view_ray.glsl"
+#include "composite/upsample.glsl"
 
 layout(location = 0, index = 0) out vec4 out_add;
 layout(location = 0, index = 1) out vec4 out_multiply;
@@ -21,6 +22,6 @@ layout(location = 0, index = 1) out vec4 out_multiply;
 void main() {
   uvec2 pixel = uvec2(gl_FragCoord.xy);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-  out_add = vec4(texelFetch(in_scattering, ivec2(pixel), 0).rgb, 0.0);
+  out_add = vec4(tyn_upsampled_in_scattering(pixel, depth), 0.0);
   out_multiply = vec4(tyn_view_transmittance(pixel, depth), 1.0);
 }

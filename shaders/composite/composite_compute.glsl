@@ -13,12 +13,13 @@ layout(set = 0, binding = TYN_COMPOSITE_BINDING_TARGET) uniform sampler2D in_sca
 layout(set = 0, binding = TYN_COMPOSITE_BINDING_COLOR, TYN_COMPOSITE_FORMAT) uniform image2D back_buffer;
 
 #include "common/view_ray.glsl"
+#include "composite/upsample.glsl"
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, frame.output_extent))) return;
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   vec4 color = imageLoad(back_buffer, ivec2(pixel));
-  color.rgb = color.rgb * tyn_view_transmittance(pixel, depth) + texelFetch(in_scattering, ivec2(pixel), 0).rgb;
+  color.rgb = color.rgb * tyn_view_transmittance(pixel, depth) + tyn_upsampled_in_scattering(pixel, depth);
   imageStore(back_buffer, ivec2(pixel), color);
 }

@@ -40,9 +40,10 @@ layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 // L_in of the listed pixel `index`; `writer`: the thread that stores it.
 void fix_up(uint index, bool writer) {
   uint packed = fixup_pixels[index];
-  uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);
-  float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-  TynViewRay ray = tyn_view_ray(pixel, depth);
+  uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);  // the L_in target's
+  uvec2 output_pixel = tyn_output_pixel(pixel);
+  float depth = texelFetch(depth_buffer, ivec2(output_pixel), 0).r;
+  TynViewRay ray = tyn_view_ray(output_pixel, depth);
   vec3 in_scattering = TYN_FIXUP_SERIAL ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
                                         : tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
   if (writer) imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));

@@ -50,7 +50,10 @@ bool tyn_epipolar_contrast(vec3 a, vec3 b, float threshold) {
   return any(greaterThan(abs(a - b), threshold * max(max(a, b), vec3(1e-30))));
 }
 
-void tyn_unwarp(uvec2 pixel) {
+// `target_pixel`: the L_in target's; its depth, ray and position are those of the output pixel it
+// stands for (at reduced resolution one of its block's), in output pixels like the slices.
+void tyn_unwarp(uvec2 target_pixel) {
+  uvec2 pixel = tyn_output_pixel(target_pixel);
   vec2 extent = tyn_output_extent();
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
@@ -69,7 +72,7 @@ void tyn_unwarp(uvec2 pixel) {
   if (slice_coordinate < 0.0) {
     if (!near_epipole) {
       // Off the slices' arc: the pixel's epipolar plane misses the lit volume (slice_arc.cpp).
-      imageStore(out_scattering, ivec2(pixel), vec4(0.0));
+      imageStore(out_scattering, ivec2(target_pixel), vec4(0.0));
       return;
     }
     slice_coordinate = 0.0;  // interpolated from slice 0, then fixed up with the epipole block
@@ -153,11 +156,11 @@ void tyn_unwarp(uvec2 pixel) {
   slice_edge = slice_edge || along_edge;
 
   if (weight_sum >= epipolar.fixup_weight_threshold && !near_epipole && !slice_edge) {
-    imageStore(out_scattering, ivec2(pixel), vec4(sum / weight_sum, 0.0));
+    imageStore(out_scattering, ivec2(target_pixel), vec4(sum / weight_sum, 0.0));
   } else {
     uint slot = atomicAdd(fixup_count, 1u);
-    fixup_pixels[slot] = pixel.x | (pixel.y << 16);
-    imageStore(out_scattering, ivec2(pixel), vec4(0.0));
+    fixup_pixels[slot] = target_pixel.x | (target_pixel.y << 16);
+    imageStore(out_scattering, ivec2(target_pixel), vec4(0.0));
   }
 }
 
@@ -186,6 +189,6 @@ void tyn_size_fixup() {
 
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (all(lessThan(pixel, frame.output_extent))) tyn_unwarp(pixel);
+  if (all(lessThan(pixel, frame.target_extent))) tyn_unwarp(pixel);
   if (tyn_last_group(TYN_DONE_UNWARP)) tyn_size_fixup();
 }

@@ -15,8 +15,9 @@ layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 void main() {
   ivec2 pixel = fixup_args.rect_lo + ivec2(gl_WorkGroupID.xy);
   if (any(greaterThanEqual(pixel, fixup_args.rect_hi))) return;
-  float depth = texelFetch(depth_buffer, pixel, 0).r;
-  TynViewRay ray = tyn_view_ray(uvec2(pixel), depth);
+  uvec2 output_pixel = tyn_output_pixel(uvec2(pixel));  // the block is in L_in target pixels
+  float depth = texelFetch(depth_buffer, ivec2(output_pixel), 0).r;
+  TynViewRay ray = tyn_view_ray(output_pixel, depth);
   vec3 in_scattering = tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
   if (gl_LocalInvocationID.x == 0u) imageStore(out_scattering, pixel, vec4(in_scattering, 0.0));
 }

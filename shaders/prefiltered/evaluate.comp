@@ -291,10 +291,12 @@ void main() {
   uvec2 pixel = gl_WorkGroupID.xy * TYN_PIXEL_GROUP_SIZE +
                 uvec2((block % (TYN_PIXEL_GROUP_SIZE / 4u)) * 4u + (lane & 3u),
                       (block / (TYN_PIXEL_GROUP_SIZE / 4u)) * 2u + ((lane >> 2u) & 1u));
-  if (any(greaterThanEqual(pixel, frame.output_extent))) return;
+  if (any(greaterThanEqual(pixel, frame.target_extent))) return;
 
-  float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-  TynViewRay ray = tyn_view_ray(pixel, depth);
+  // `pixel` is the L_in target's; its ray is the output pixel's it stands for.
+  uvec2 output_pixel = tyn_output_pixel(pixel);
+  float depth = texelFetch(depth_buffer, ivec2(output_pixel), 0).r;
+  TynViewRay ray = tyn_view_ray(output_pixel, depth);
   float s = ray.surface_distance;
 
   // Where the ray ends in the rectified map, and its (constant) rectified depth. Both forms take

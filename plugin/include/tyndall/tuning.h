@@ -70,6 +70,9 @@ struct EpipolarSettings {
   /// the fog's attenuation (a spot light's fall-off) vary together inside it, a shorter one costs
   /// more steps. A power of two in 1..4096, default 32 (docs/EPIPOLAR.md, "Coloured shafts").
   std::uint32_t coloredStep = 32;
+  /// The resolution of the L_in target (slices and samples are unchanged; the unwarp and the
+  /// fix-up run per target pixel), upsampled by the composite. Default Full.
+  ScatteringResolution resolution = ScatteringResolution::Full;
 };
 
 /// How a prefiltered shadow map represents the visibility along a light ray (docs/PREFILTERED.md
@@ -181,6 +184,9 @@ struct PrefilteredSettings {
   /// not reach is reconstructed (the edges of a window's beam; docs/PREFILTERED.md "Texel walk").
   /// 0..64, default 8; 0 turns it off.
   std::uint32_t texelWalkSteps = 8;
+  /// The resolution of the L_in target (the evaluation runs per target pixel), upsampled by the
+  /// composite. Default Full.
+  ScatteringResolution resolution = ScatteringResolution::Full;
 };
 
 const char* to_string(PrefilteredBasis basis) noexcept;

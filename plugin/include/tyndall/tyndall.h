@@ -96,6 +96,16 @@ enum class Technique : std::uint32_t {
 const char* to_string(Profile profile) noexcept;
 const char* to_string(Technique technique) noexcept;
 
+/// The resolution a technique computes L_in at (FrameDesc::resolution, else the technique's
+/// settings: EpipolarSettings/PrefilteredSettings::resolution, the profile table's). Below full, the composite upsamples it with a joint bilateral filter on the
+/// depth buffer (docs/INTEGRATION.md "Reduced resolution"); the Reference always runs at full.
+enum class ScatteringResolution : std::uint32_t {
+  Full = 1,     ///< one L_in per pixel
+  Half = 2,     ///< one per 2×2 pixels: a quarter of the per-pixel work and target memory
+  Quarter = 4,  ///< one per 4×4 pixels
+};
+const char* to_string(ScatteringResolution resolution) noexcept;  ///< "full", "half", "quarter"
+
 /// A picture of how the technique sampled the frame (FrameDesc::debugView), drawn over a dimmed
 /// grey L_in. Only the epipolar technique draws one.
 enum class DebugView : std::uint32_t {
@@ -224,6 +234,9 @@ struct FrameDesc {
 
   Profile profile = Profile::Balanced;
   float autoBudgetMilliseconds = 4.0f;  ///< Profile::Auto's GPU-time budget (FrameTimings' total), > 0
+  /// Optional: the resolution of L_in instead of the profile's (or the settings'); the Reference
+  /// always runs at full resolution.
+  std::optional<ScatteringResolution> resolution;
   /// Optional overrides for tools and validation (tyndall/tuning.h), read during `record` only:
   /// the technique instead of the profile's (None: the profile's), and its parameters.
   Technique technique = Technique::None;
@@ -290,6 +303,8 @@ struct Stats {
   /// How the last frame wrote the back buffer: a compute pass (the back buffer has STORAGE usage
   /// and a format compute can write) or a full-screen fragment pass; None when it was left alone.
   CompositePath composite = CompositePath::None;
+  /// The resolution L_in was computed at in the last frame (the composite upsampled it below Full).
+  ScatteringResolution scatteringResolution = ScatteringResolution::Full;
   std::uint32_t dispatches = 0;  ///< compute dispatches (direct and indirect) the last `record` recorded
   std::uint32_t barriers = 0;    ///< pipeline barriers the last `record` recorded
   FrameTimings lastTimings;                     ///< most recent frame whose timestamps were available

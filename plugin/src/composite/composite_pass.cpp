@@ -95,6 +95,15 @@ Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
   if (Outcome o = allocateDescriptorSets(gpu, computeSetLayout_, computeSizes, computePool_, computeSets_); !o) {
     return o;
   }
+  scatteringAovSets_.resize(slots);
+  if (Outcome o = allocateDescriptorSets(gpu, computeSetLayout_, computeSizes, scatteringAovPool_, scatteringAovSets_);
+      !o) {
+    return o;
+  }
+  if (Outcome o = createComputePipeline(gpu, computeLayout_, shaders::scattering_aov_comp(), scatteringAovPipeline_);
+      !o) {
+    return o;
+  }
 
   const std::array<VkDescriptorPoolSize, 3> aovSizes{{
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
@@ -106,6 +115,8 @@ Outcome CompositePass::create(const Gpu& gpu, VkSampler nearest, std::uint32_t s
 }
 
 void CompositePass::destroy(const Gpu& gpu) {
+  if (scatteringAovPool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, scatteringAovPool_, gpu.allocator);
+  if (scatteringAovPipeline_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipeline(gpu.device, scatteringAovPipeline_, gpu.allocator);
   if (computePool_ != VK_NULL_HANDLE) gpu.vk.vkDestroyDescriptorPool(gpu.device, computePool_, gpu.allocator);
   for (auto& [format, pipeline] : computePipelines_) gpu.vk.vkDestroyPipeline(gpu.device, pipeline, gpu.allocator);
   if (computeLayout_ != VK_NULL_HANDLE) gpu.vk.vkDestroyPipelineLayout(gpu.device, computeLayout_, gpu.allocator);
@@ -254,6 +265,22 @@ void CompositePass::recordCompute(const Gpu& gpu, VkCommandBuffer cmd, std::uint
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computeLayout_, 0, 1, &set, 0, nullptr);
   const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
   gpu.cmdDispatch(cmd, (color.extent.width + group - 1) / group, (color.extent.height + group - 1) / group, 1);
+}
+
+void CompositePass::recordScatteringAov(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
+                                        const ImageRef& depth, VkImageLayout depthLayout, VkImageView scattering,
+                                        VkImageView output, VkExtent2D extent) {
+  const VkDescriptorSet set = scatteringAovSets_[slot];
+  writeSet(gpu, set, constants, depth, depthLayout, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+           {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  const VkDescriptorImageInfo outputInfo{VK_NULL_HANDLE, output, VK_IMAGE_LAYOUT_GENERAL};
+  VkWriteDescriptorSet outputWrite = descriptorWrite(set, gpu::TYN_COMPOSITE_BINDING_COLOR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  outputWrite.pImageInfo = &outputInfo;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, 1, &outputWrite, 0, nullptr);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, scatteringAovPipeline_);
+  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computeLayout_, 0, 1, &set, 0, nullptr);
+  const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
+  gpu.cmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);
 }
 
 void CompositePass::recordTransmittance(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,

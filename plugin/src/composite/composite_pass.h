@@ -37,6 +37,11 @@ class CompositePass {
   /// in SHADER_READ_ONLY_OPTIMAL and the depth readable by compute shaders.
   void recordCompute(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
                      const ImageRef& depth, VkImageLayout depthLayout, VkImageView scattering, const ImageRef& color);
+  /// The L_in AOV of a reduced-resolution target: the upsampled L_in of every pixel of `extent`
+  /// into `output` (storage, GENERAL, RGBA32F); `scattering` and the depth as for recordCompute.
+  void recordScatteringAov(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
+                           const ImageRef& depth, VkImageLayout depthLayout, VkImageView scattering,
+                           VkImageView output, VkExtent2D extent);
   /// The T AOV: T of every pixel of `extent` into `target` (storage, GENERAL, RGBA32F), the depth
   /// readable by compute shaders.
   void recordTransmittance(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
@@ -60,6 +65,11 @@ class CompositePass {
   VkDescriptorPool computePool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> computeSets_;
   std::map<VkFormat, VkPipeline> computePipelines_;
+  // The L_in AOV's upsample: the compute composite's layout, sets of its own (the composite's set
+  // of the slot is bound earlier in the same command buffer and must not change).
+  VkPipeline scatteringAovPipeline_ = VK_NULL_HANDLE;
+  VkDescriptorPool scatteringAovPool_ = VK_NULL_HANDLE;
+  std::vector<VkDescriptorSet> scatteringAovSets_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
 };

@@ -115,6 +115,7 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   if (s.coloredStep < 1 || s.coloredStep > 4096 || (s.coloredStep & (s.coloredStep - 1)) != 0) {
     return invalid("epipolar.coloredStep must be a power of two in 1..4096");
   }
+  if (!isScatteringResolution(s.resolution)) return invalid("epipolar.resolution is not a ScatteringResolution");
   return {};
 }
 
@@ -169,6 +170,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, const TechniqueResources& reso
 
   fixupReadback_.resize(slots);
   fixupPending_.assign(slots, false);
+  fixupExtent_.assign(slots, VkExtent2D{1, 1});
   for (MappedBuffer& buffer : fixupReadback_) {
     if (Outcome o = createMappedBuffer(gpu, 4 * sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT, buffer); !o) {
       return o;
@@ -270,7 +272,11 @@ void EpipolarTechnique::destroyTextures(const Gpu& gpu, SampleTextures& textures
   textures = SampleTextures{};
 }
 
-void EpipolarTechnique::destroySizeDependent(const Gpu& gpu) { destroyBuffer(gpu, fixupList_); }
+void EpipolarTechnique::destroySizeDependent(const Gpu& gpu) {
+  destroyBuffer(gpu, fixupList_);
+  fixupEntries_ = 0;
+  retiredFixupLists_.destroyAll([&](MappedBuffer& buffer) { destroyBuffer(gpu, buffer); });
+}
 
 void EpipolarTechnique::destroy(const Gpu& gpu) {
   retired_.destroyAll([&](SampleTextures& textures) { destroyTextures(gpu, textures); });
@@ -300,8 +306,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) {
   const EpipolarSettings& settings = in.frame.epipolar != nullptr ? *in.frame.epipolar : in.choice.epipolar;
   const EpipolarFramePlan plan = planEpipolarFrame(in.frame, settings, in.extent);
-  if (Outcome o = prepareTextures(gpu, settings, plan.treeSamples, plan.colorSamples, plan.shadowBlocks, in.extent,
-                                  in.frameIndex, in.framesInFlight);
+  if (Outcome o = prepareTextures(gpu, settings, plan.treeSamples, plan.colorSamples, plan.shadowBlocks, in.targetExtent,
+                                  in.frameIndex);
       !o) {
     return o;
   }
@@ -313,30 +319,48 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, Techni
   return {};
 }
 
-void EpipolarTechnique::readBack(std::uint32_t slot, VkExtent2D extent, Stats& stats) {
+ScatteringResolution EpipolarTechnique::resolution(const FrameDesc& frame, const ProfileChoice& choice) const {
+  if (frame.resolution) return *frame.resolution;
+  return frame.epipolar != nullptr ? frame.epipolar->resolution : choice.epipolar.resolution;
+}
+
+void EpipolarTechnique::readBack(std::uint32_t slot, Stats& stats) {
   if (Counts counts; takeCounts(slot, counts)) {
+    const VkExtent2D extent = fixupExtent_[slot];
     stats.epipolarCounts = EpipolarCounts{
         counts.marched, counts.shadowed, static_cast<double>(counts.fixedUp) / (double(extent.width) * extent.height)};
   }
 }
 
+void EpipolarTechnique::releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) {
+  retiredFixupLists_.release(frameIndex, framesInFlight, [&](MappedBuffer& buffer) { destroyBuffer(gpu, buffer); });
+  // The kSpareTextureSets most recently retired sets are kept; older ones are destroyed once no
+  // frame in flight uses them.
+  retired_.release(frameIndex, framesInFlight, [&](SampleTextures& textures) { destroyTextures(gpu, textures); },
+                   kSpareTextureSets);
+  retiredShadowBlocks_.release(frameIndex, framesInFlight, [&](OwnedImage& image) { destroyImage(gpu, image); });
+}
+
 Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
                                    std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
-                                   std::uint64_t frameIndex, std::uint32_t framesInFlight) {
+                                   std::uint64_t frameIndex) {
   frameIndex_ = frameIndex;
-  // The fix-up list, at the first frame that runs the technique at this extent (a context that
-  // only runs the Reference holds none).
-  if (fixupList_.buffer == VK_NULL_HANDLE) {
-    const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height;
+  // The fix-up list, at the first frame that runs the technique (a context that only runs the
+  // Reference holds none), with an entry per pixel of the L_in target; a larger target replaces it.
+  if (const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height; entries > fixupEntries_) {
+    MappedBuffer list;
     if (Outcome o = createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                            VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
-                                       fixupList_);
+                                       list);
         !o) {
       return o;
     }
+    if (fixupList_.buffer != VK_NULL_HANDLE) retiredFixupLists_.retire(frameIndex, fixupList_);
+    fixupList_ = list;
+    fixupEntries_ = entries;
   }
-  if (Outcome o = prepareShadowBlocks(gpu, shadowBlocks, frameIndex, framesInFlight); !o) return o;
+  if (Outcome o = prepareShadowBlocks(gpu, shadowBlocks, frameIndex); !o) return o;
   // A tree of L 1D samples takes L − 1 texels per row; without one a 1 × 1 texture keeps the
   // descriptor valid.
   const std::uint32_t treeWidth = treeSamples > 1 ? treeSamples - 1 : 1;
@@ -354,10 +378,6 @@ Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSetting
     // profiles allocates nothing once each has run.
     if (std::optional<SampleTextures> spare = retired_.take(fits)) textures_ = *spare;
   }
-  // The kSpareTextureSets most recently retired sets are kept; older ones are destroyed once no
-  // frame in flight uses them.
-  retired_.release(frameIndex, framesInFlight, [&](SampleTextures& textures) { destroyTextures(gpu, textures); },
-                   kSpareTextureSets);
   if (textures_.slices != 0) return {};
   SampleTextures fresh;
   fresh.slices = settings.slices;
@@ -404,9 +424,7 @@ Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSetting
   return {};
 }
 
-Outcome EpipolarTechnique::prepareShadowBlocks(const Gpu& gpu, VkExtent2D blocks, std::uint64_t frameIndex,
-                                               std::uint32_t framesInFlight) {
-  retiredShadowBlocks_.release(frameIndex, framesInFlight, [&](OwnedImage& image) { destroyImage(gpu, image); });
+Outcome EpipolarTechnique::prepareShadowBlocks(const Gpu& gpu, VkExtent2D blocks, std::uint64_t frameIndex) {
   shadowBlocksUsed_ = blocks.width != 0;
   if (blocks.width == 0 ||
       (blocks.width == shadowBlocks_.extent.width && blocks.height == shadowBlocks_.extent.height)) {
@@ -647,6 +665,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   memoryBarrier(gpu, cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                 VK_ACCESS_HOST_READ_BIT);
   fixupPending_[slot] = true;
+  fixupExtent_[slot] = extent;
   // Later passes (composite, AOV copies) read the targets after barriers of the caller's.
 }
 

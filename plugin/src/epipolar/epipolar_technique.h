@@ -45,11 +45,13 @@ class EpipolarTechnique final : public ScatteringTechnique {
   Outcome prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) override;
   void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
   /// Stats::epipolarCounts from the slot's previous epipolar frame.
-  void readBack(std::uint32_t slot, VkExtent2D extent, Stats& stats) override;
+  void readBack(std::uint32_t slot, Stats& stats) override;
+  void releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) override;
+  [[nodiscard]] ScatteringResolution resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
   [[nodiscard]] bool drawsDebugViews() const override { return true; }
   void destroy(const Gpu& gpu) override;
-  /// Drops the fix-up list, which holds every pixel: for a new output extent (the GPU idle). The
-  /// next prepare() creates it at that extent.
+  /// Drops the fix-up list, which holds every pixel of the L_in target: for a new output extent
+  /// (the GPU idle). The next prepare() creates it for its target.
   void destroySizeDependent(const Gpu& gpu) override;
 
  private:
@@ -59,11 +61,10 @@ class EpipolarTechnique final : public ScatteringTechnique {
   /// light-colour texture, or no slice lines this frame). Textures of other sizes are kept until no
   /// frame in flight can use them (frames in flight need no stall when the parameters change).
   /// `shadowBlocks`: the shadow-map block image's extent (shadowBlockExtent), 0 × 0 when the frame
-  /// needs none. `extent`: the output's, for the fix-up list, created by the first frame that runs
-  /// the technique at that extent.
+  /// needs none. `extent`: the L_in target's, for the fix-up list.
   Outcome prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
                   std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
-                  std::uint64_t frameIndex, std::uint32_t framesInFlight);
+                  std::uint64_t frameIndex);
 
 
   /// A spot or point light's march and fix-up read the semi-analytic scattering table (yusov2013),
@@ -99,8 +100,7 @@ class EpipolarTechnique final : public ScatteringTechnique {
     std::uint32_t colorSamples = 0;
   };
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);
-  Outcome prepareShadowBlocks(const Gpu& gpu, VkExtent2D blocks, std::uint64_t frameIndex,
-                              std::uint32_t framesInFlight);
+  Outcome prepareShadowBlocks(const Gpu& gpu, VkExtent2D blocks, std::uint64_t frameIndex);
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
   Outcome createCommonPipelines(const Gpu& gpu);
 
@@ -127,6 +127,7 @@ class EpipolarTechnique final : public ScatteringTechnique {
   std::vector<VkDescriptorSet> sets_;
   std::vector<MappedBuffer> fixupReadback_;  // per slot: fix-up and marched counts, read a lap later
   std::vector<bool> fixupPending_;
+  std::vector<VkExtent2D> fixupExtent_;  // per slot: the L_in target the counted fix-up ran over
   MappedBuffer fixupArgs_;                   // VkDispatchIndirectCommand
   // The spot light's scattering table (RGBA32F, TYN_SCATTERING_LUT_WIDTH × HEIGHT, GENERAL),
   // created at the first spot light; until then a 1×1 placeholder keeps binding 16 valid.
@@ -143,7 +144,11 @@ class EpipolarTechnique final : public ScatteringTechnique {
   bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
   RetireQueue<OwnedImage> retiredShadowBlocks_;
   // Size-dependent.
-  MappedBuffer fixupList_;                   // count, then one packed pixel per entry; from prepare()
+  // Count, then one packed L_in target pixel per entry; from prepare(), for the largest target a
+  // frame has run at (a list too small for a frame's target is retired and replaced).
+  MappedBuffer fixupList_;
+  VkDeviceSize fixupEntries_ = 0;
+  RetireQueue<MappedBuffer> retiredFixupLists_;
   SampleTextures textures_;
   RetireQueue<SampleTextures> retired_;  // see kSpareTextureSets
   std::uint64_t frameIndex_ = 0;

@@ -155,6 +155,7 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
   if (s.epipoleBlockPixels > 256) return invalid("prefiltered.epipoleBlockPixels must be in 0..256");
   if (s.shortRayColumns > s.columns) return invalid("prefiltered.shortRayColumns must be in 0..columns");
   if (s.texelWalkSteps > 64) return invalid("prefiltered.texelWalkSteps must be in 0..64");
+  if (!isScatteringResolution(s.resolution)) return invalid("prefiltered.resolution is not a ScatteringResolution");
   return {};
 }
 
@@ -328,11 +329,15 @@ Outcome PrefilteredTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& /
   return createPipelines(gpu);
 }
 
+ScatteringResolution PrefilteredTechnique::resolution(const FrameDesc& frame, const ProfileChoice& choice) const {
+  if (frame.resolution) return *frame.resolution;
+  return frame.prefiltered != nullptr ? frame.prefiltered->resolution : choice.prefiltered.resolution;
+}
+
 Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) {
   const PrefilteredSettings& settings = in.frame.prefiltered != nullptr ? *in.frame.prefiltered : in.choice.prefiltered;
   PrefilteredStats decisions;
-  if (Outcome o = prepareFrame(gpu, in.frame, settings, in.extent, in.slot, in.frameIndex, in.framesInFlight,
-                               decisions, report.note);
+  if (Outcome o = prepareFrame(gpu, in.frame, settings, in.extent, in.slot, in.frameIndex, decisions, report.note);
       !o) {
     return o;
   }
@@ -340,12 +345,13 @@ Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameInputs& in, Tec
   return {};
 }
 
+void PrefilteredTechnique::releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) {
+  retired_.release(frameIndex, framesInFlight, [&](Maps& maps) { destroyMaps(gpu, maps); });
+}
+
 Outcome PrefilteredTechnique::prepareFrame(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings,
                                            VkExtent2D extent, std::uint32_t slot, std::uint64_t frameIndex,
-                                           std::uint32_t framesInFlight, PrefilteredStats& decisions,
-                                           std::string& note) {
-  retired_.release(frameIndex, framesInFlight, [&](Maps& maps) { destroyMaps(gpu, maps); });
-
+                                           PrefilteredStats& decisions, std::string& note) {
   const std::uint32_t basis = static_cast<std::uint32_t>(settings.basis);
   const Storage& storage = kStorage[basis];
   if ((supportedVariants_ & (1u << basis)) == 0) {

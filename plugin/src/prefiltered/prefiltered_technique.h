@@ -39,6 +39,8 @@ class PrefilteredTechnique final : public ScatteringTechnique {
   Outcome ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) override;
   void destroy(const Gpu& gpu) override;
   Outcome prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) override;
+  void releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) override;
+  [[nodiscard]] ScatteringResolution resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
   /// Records the passes prepare() chose; each is timed and appended to the target's passes.
   void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
 
@@ -49,8 +51,8 @@ class PrefilteredTechnique final : public ScatteringTechnique {
   /// them). `decisions` and `note` receive what was chosen, for the stats. The light must be
   /// directional, and something must scatter (selectTechnique sees to both).
   Outcome prepareFrame(const Gpu& gpu, const FrameDesc& frame, const PrefilteredSettings& settings, VkExtent2D extent,
-                       std::uint32_t slot, std::uint64_t frameIndex, std::uint32_t framesInFlight,
-                       PrefilteredStats& decisions, std::string& note);
+                       std::uint32_t slot, std::uint64_t frameIndex, PrefilteredStats& decisions,
+                       std::string& note);
 
   // What the maps are made for: a frame whose key differs gets new maps.
   struct MapKey {

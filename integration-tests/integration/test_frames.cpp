@@ -279,20 +279,35 @@ class SwitchingEffect final : public host::PostProcessEffect {
 // would say so through its callback), every frame runs what its profile or technique names, and
 // synchronization validation sees nothing, and after the first lap nothing is allocated (the
 // sample textures of each profile are kept and reused while other profiles' frames are in flight).
-TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
-  const host::Scene scene = loadTestScene("analytic-spheres");
+// A renderer of analytic-spheres at 64×36 (256² map, two frames in flight) and a Tyndall effect for
+// it, not yet in its post-process stack.
+struct SmallFrames {
   host::RenderSettings settings;
-  settings.width = 64;
-  settings.height = 36;
-  settings.shadowMapSize = 256;
-  settings.framesInFlight = 2;
+  std::unique_ptr<host::Renderer> renderer;
+  std::unique_ptr<samples::TyndallEffect> effect;
+};
+
+SmallFrames smallFrames(PipelineCreation pipelines) {
+  SmallFrames s;
+  s.settings.width = 64;
+  s.settings.height = 36;
+  s.settings.shadowMapSize = 256;
+  s.settings.framesInFlight = 2;
   std::string error;
   host::Device& device = validatedDevice();
-  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
-  ASSERT_TRUE(renderer) << error;
-  std::unique_ptr<samples::TyndallEffect> effect =
-      samples::TyndallEffect::create(device, settings, Profile::Balanced, error, PipelineCreation::AtCreate);
-  ASSERT_TRUE(effect) << error;
+  s.renderer = host::Renderer::create(device, loadTestScene("analytic-spheres"), s.settings, error);
+  EXPECT_TRUE(s.renderer) << error;
+  s.effect = samples::TyndallEffect::create(device, s.settings, Profile::Balanced, error, pipelines);
+  EXPECT_TRUE(s.effect) << error;
+  return s;
+}
+
+TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
+  SmallFrames small = smallFrames(PipelineCreation::AtCreate);
+  ASSERT_TRUE(small.renderer && small.effect);
+  host::Renderer* renderer = small.renderer.get();
+  samples::TyndallEffect* effect = small.effect.get();
+  std::string error;
   SwitchingEffect switching(*effect);
   renderer->addPostProcess(&switching);
   for (int frame = 0; frame < 100; ++frame) ASSERT_TRUE(renderer->renderFrame(error)) << "frame " << frame << ": " << error;
@@ -326,20 +341,12 @@ TEST(Profiles, SwitchingEveryFrameCompilesNothingAndStaysValid) {
 // whichever technique runs them: a context that stops running the prefiltered technique after
 // changing its map size does not keep the old maps.
 TEST(Profiles, RetiredTexturesAreReleasedWhicheverTechniqueRuns) {
-  const host::Scene scene = loadTestScene("analytic-spheres");
-  host::RenderSettings settings;
-  settings.width = 64;
-  settings.height = 36;
-  settings.shadowMapSize = 256;
-  settings.framesInFlight = 2;
+  SmallFrames small = smallFrames(PipelineCreation::OnFirstUse);
+  ASSERT_TRUE(small.renderer && small.effect);
+  host::Renderer* renderer = small.renderer.get();
+  samples::TyndallEffect* effect = small.effect.get();
   std::string error;
-  host::Device& device = validatedDevice();
-  std::unique_ptr<host::Renderer> renderer = host::Renderer::create(device, scene, settings, error);
-  ASSERT_TRUE(renderer) << error;
-  std::unique_ptr<samples::TyndallEffect> effect =
-      samples::TyndallEffect::create(device, settings, Profile::Balanced, error, PipelineCreation::OnFirstUse);
-  ASSERT_TRUE(effect) << error;
-  renderer->addPostProcess(effect.get());
+  renderer->addPostProcess(effect);
   effect->setTechnique(Technique::Prefiltered);
   PrefilteredSettings maps;
   maps.rows = maps.columns = 64;
@@ -350,7 +357,7 @@ TEST(Profiles, RetiredTexturesAreReleasedWhicheverTechniqueRuns) {
   ASSERT_TRUE(renderer->renderFrame(error)) << error;
   const std::uint64_t held = effect->context().stats().deviceMemoryBytes;
   effect->setTechnique(Technique::Reference);
-  for (std::uint32_t frame = 0; frame <= settings.framesInFlight; ++frame) {
+  for (std::uint32_t frame = 0; frame <= small.settings.framesInFlight; ++frame) {
     ASSERT_TRUE(renderer->renderFrame(error)) << error;
   }
   renderer->waitIdle();

@@ -667,6 +667,7 @@ TEST(Prefiltered, EachBadSettingRecordsNothingAndNamesTheField) {
       {"prefiltered.epipoleBlockPixels", [](PrefilteredSettings& s) { s.epipoleBlockPixels = 257; }},
       {"prefiltered.shortRayColumns", [](PrefilteredSettings& s) { s.shortRayColumns = s.columns + 1; }},
       {"prefiltered.texelWalkSteps", [](PrefilteredSettings& s) { s.texelWalkSteps = 65; }},
+      {"prefiltered.resolution", [](PrefilteredSettings& s) { s.resolution = static_cast<ScatteringResolution>(3); }},
   };
   for (const BadSetting& bad : cases) {
     SCOPED_TRACE(bad.field);

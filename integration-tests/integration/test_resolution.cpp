@@ -218,17 +218,5 @@ TEST(ReducedResolutionStats, OutputsSmallerThanABlock) {
   expectNoValidationMessages();
 }
 
-TEST(ReducedResolutionStats, AResolutionThatIsNoneIsRejected) {
-  samples::RenderOptions options = optionsFor(Technique::Prefiltered, ScatteringResolution::Full);
-  options.prefiltered->resolution = static_cast<ScatteringResolution>(3);
-  options.width = 64;
-  options.height = 36;
-  samples::RenderResult result;
-  std::string error;
-  EXPECT_FALSE(samples::renderScene(validatedDevice(), loadTestScene("analytic-spheres"), options, true, result, error));
-  EXPECT_NE(error.find("prefiltered.resolution"), std::string::npos) << error;
-  expectNoValidationMessages();
-}
-
 }  // namespace
 }  // namespace tyndall::test

@@ -1,6 +1,7 @@
 // tyndall-soak: one Tyndall context records frame after frame while everything an engine may
-// change between frames changes: profile and technique, light type, medium (the extremes suite's
-// values included), light-colour texture, AOVs, debug views, output size and back-buffer format.
+// change between frames changes: profile and technique, L_in resolution, light type, medium (the
+// extremes suite's values included), light-colour texture, AOVs, debug views, output size and
+// back-buffer format.
 // On the validated device (synchronization validation on) it asserts, and exits non-zero at the
 // first failure: no validation message; no error from the context; L_in and T finite (read back
 // every few frames); device memory flat after the first lap; host RSS growth within a bound;
@@ -75,6 +76,7 @@ struct FrameChoice {
   bool scatteringAov = false;
   bool transmittanceAov = false;
   DebugView debugView = DebugView::None;
+  std::optional<ScatteringResolution> resolution;      // empty: the profile's
 };
 
 // The effect in the host's post-process stack: the engine's FrameDesc, changed as `next` says.
@@ -99,6 +101,7 @@ class SoakEffect final : public host::PostProcessEffect {
     FrameStorage storage;
     FrameDesc frame = makeFrameDesc(inputs, next.profile, storage);
     frame.technique = next.technique;
+    frame.resolution = next.resolution;
     if (next.medium) frame.medium = *next.medium;
     frame.light.intensity *= next.intensityScale;
     if (!next.lightColor) frame.lightColor = {};
@@ -183,8 +186,9 @@ class Soak {
     std::uint64_t readBacks = 0;
     for (std::uint64_t lapIndex = 0; frame < options_.frames; ++lapIndex) {
       // Every lap starts with the same frames at the first size and back buffer: each scene with
-      // each profile, the prefiltered technique, a debug view and the AOVs. Whatever the context
-      // allocates lazily exists after lap 1, so the memory measured after them must not change.
+      // each profile, the prefiltered technique, the reduced resolutions, a debug view and the
+      // AOVs. Whatever the context allocates lazily exists after lap 1, so the memory measured
+      // after them must not change.
       std::vector<std::tuple<std::size_t, FrameChoice>> fixed;
       for (std::size_t scene = 0; scene < scenes_.size(); ++scene) {
         // First: the maps the prefiltered technique retires here (random frames may have left it
@@ -192,6 +196,16 @@ class Soak {
         FrameChoice prefiltered;
         prefiltered.technique = Technique::Prefiltered;
         fixed.emplace_back(scene, prefiltered);
+        // The reduced L_in targets (and the full-resolution AOV image they need), kept as spares
+        // through the profile frames that follow.
+        if (scene == 0) {
+          for (ScatteringResolution resolution : {ScatteringResolution::Half, ScatteringResolution::Quarter}) {
+            FrameChoice reduced;
+            reduced.resolution = resolution;
+            reduced.scatteringAov = true;
+            fixed.emplace_back(scene, reduced);
+          }
+        }
         for (Profile profile : kProfiles) {
           FrameChoice c;
           c.profile = profile;
@@ -308,6 +322,7 @@ class Soak {
     c.scatteringAov = chance(0.4);
     c.transmittanceAov = chance(0.3);
     if (chance(0.15)) c.debugView = chance(0.5) ? DebugView::EpipolarSamples : DebugView::FixedUpPixels;
+    if (chance(0.3)) c.resolution = chance(0.5) ? ScatteringResolution::Half : ScatteringResolution::Quarter;
     return c;
   }
 
@@ -447,8 +462,8 @@ bool parse(int argc, char** argv, Options& options) {
       return false;
     }
   }
-  // A lap holds the fixed frames (6 per scene) and at least as many random ones.
-  return options.frames > 0 && options.lap >= 2 * 6 * kScenes.size();
+  // A lap holds the fixed frames (6 per scene, 2 more for the first) and at least as many random ones.
+  return options.frames > 0 && options.lap >= 2 * (6 * kScenes.size() + 2);
 }
 
 }  // namespace
@@ -458,7 +473,7 @@ int main(int argc, char** argv) {
   tyndall::samples::Options options;
   if (!tyndall::samples::parse(argc, argv, options)) {
     std::fprintf(stderr,
-                 "usage: tyndall-soak [--frames N] [--seed S] [--lap N (>= 60)] [--rss-bound-mib M] [--verbose]\n");
+                 "usage: tyndall-soak [--frames N] [--seed S] [--lap N (>= 64)] [--rss-bound-mib M] [--verbose]\n");
     return 2;
   }
   return tyndall::samples::Soak(options).run();

@@ -62,7 +62,8 @@ reference    The Reference's GPU time per pass and wall-clock time per frame. Pr
 memory       Device memory a context holds per profile and size (Stats::deviceMemoryBytes after one
              frame). Prints a table; writes MEMORY_OUT (out/memory-footprint). SCENES (pillars
              spot-lamp), SIZES (1280x720 1920x1080 3840x2160), PROFILES (reference high balanced
-             performance), SHADOW_MAP (2048).
+             performance), RESOLUTIONS (full; each profile also at half or quarter with
+             tyndall-render --resolution), SHADOW_MAP (2048).
 extremes     Runs the extremes suite (build-dir/integration-tests/tyndall_extremes_tests, on
              TYNDALL_DEVICE, default llvmpipe) and writes docs/EXTREMES.md from what it prints; exits
              with the suite's status.
@@ -309,7 +310,7 @@ part_reference() {
 
 # memory: one frame per profile, scene and size in a fresh context.
 part_memory() {
-  local render out map sizes size scene profile cells run technique mib
+  local render out map sizes size scene profile cells run technique mib resolution label name reduced
   render="$(program "$1" tyndall-render)"
   out="${MEMORY_OUT:-out/memory-footprint}"
   mkdir -p "$out"
@@ -322,17 +323,22 @@ part_memory() {
   printf '\n'
   for scene in ${SCENES:-pillars spot-lamp}; do
     for profile in ${PROFILES:-reference high balanced performance}; do
-      cells=""
-      for size in $sizes; do
-        run="$out/$scene-$size-$profile.json"
-        "$render" "samples/scenes/$scene.json" --profile "$profile" --width "$(width_of "$size")" \
-          --height "$(height_of "$size")" --shadow-map-size "$map" --frames 1 --timings "$run" \
-          --output "$out/$scene-$size-$profile.png" >/dev/null
-        # The technique is the profile's, the same at every size: the last run's is printed.
-        read -r technique mib < <(python3 scripts/lib/measure_tables.py memory-cell "$run")
-        cells="$cells $mib |"
+      for resolution in ${RESOLUTIONS:-full}; do
+        cells="" label="$profile" name="$profile" reduced=()
+        if [ "$resolution" != full ]; then
+          label="$profile $resolution" name="$profile-$resolution" reduced=(--resolution "$resolution")
+        fi
+        for size in $sizes; do
+          run="$out/$scene-$size-$name.json"
+          "$render" "samples/scenes/$scene.json" --profile "$profile" --width "$(width_of "$size")" \
+            --height "$(height_of "$size")" --shadow-map-size "$map" --frames 1 --timings "$run" \
+            --output "$out/$scene-$size-$name.png" "${reduced[@]}" >/dev/null
+          # The technique is the profile's, the same at every size: the last run's is printed.
+          read -r technique mib < <(python3 scripts/lib/measure_tables.py memory-cell "$run")
+          cells="$cells $mib |"
+        done
+        printf '| %s | %s | %s |%s\n' "$scene" "$label" "$technique" "$cells"
       done
-      printf '| %s | %s | %s |%s\n' "$scene" "$profile" "$technique" "$cells"
     done
   done
 }

@@ -251,33 +251,28 @@ Outcome CompositePass::ensureComputePipeline(const Gpu& gpu, VkFormat format) {
 void CompositePass::recordCompute(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
                                   const ImageRef& depth, VkImageLayout depthLayout, VkImageView scattering,
                                   const ImageRef& color) {
-  const VkDescriptorSet set = computeSets_[slot];
-  writeSet(gpu, set, constants, depth, depthLayout, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-           {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-  const VkDescriptorImageInfo backBuffer{VK_NULL_HANDLE, color.view, VK_IMAGE_LAYOUT_GENERAL};
-  const VkWriteDescriptorSet colorWrite = [&] {
-    VkWriteDescriptorSet w = descriptorWrite(set, gpu::TYN_COMPOSITE_BINDING_COLOR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-    w.pImageInfo = &backBuffer;
-    return w;
-  }();
-  gpu.vk.vkUpdateDescriptorSets(gpu.device, 1, &colorWrite, 0, nullptr);
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computePipelines_.at(color.format));
-  gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computeLayout_, 0, 1, &set, 0, nullptr);
-  const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
-  gpu.cmdDispatch(cmd, (color.extent.width + group - 1) / group, (color.extent.height + group - 1) / group, 1);
+  recordWithComputeLayout(gpu, cmd, computeSets_[slot], computePipelines_.at(color.format), constants, depth,
+                          depthLayout, scattering, color.view, color.extent);
 }
 
 void CompositePass::recordScatteringAov(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, VkBuffer constants,
                                         const ImageRef& depth, VkImageLayout depthLayout, VkImageView scattering,
                                         VkImageView output, VkExtent2D extent) {
-  const VkDescriptorSet set = scatteringAovSets_[slot];
+  recordWithComputeLayout(gpu, cmd, scatteringAovSets_[slot], scatteringAovPipeline_, constants, depth, depthLayout,
+                          scattering, output, extent);
+}
+
+void CompositePass::recordWithComputeLayout(const Gpu& gpu, VkCommandBuffer cmd, VkDescriptorSet set,
+                                            VkPipeline pipeline, VkBuffer constants, const ImageRef& depth,
+                                            VkImageLayout depthLayout, VkImageView scattering, VkImageView storage,
+                                            VkExtent2D extent) {
   writeSet(gpu, set, constants, depth, depthLayout, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
            {VK_NULL_HANDLE, scattering, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-  const VkDescriptorImageInfo outputInfo{VK_NULL_HANDLE, output, VK_IMAGE_LAYOUT_GENERAL};
-  VkWriteDescriptorSet outputWrite = descriptorWrite(set, gpu::TYN_COMPOSITE_BINDING_COLOR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
-  outputWrite.pImageInfo = &outputInfo;
-  gpu.vk.vkUpdateDescriptorSets(gpu.device, 1, &outputWrite, 0, nullptr);
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, scatteringAovPipeline_);
+  const VkDescriptorImageInfo storageInfo{VK_NULL_HANDLE, storage, VK_IMAGE_LAYOUT_GENERAL};
+  VkWriteDescriptorSet storageWrite = descriptorWrite(set, gpu::TYN_COMPOSITE_BINDING_COLOR, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  storageWrite.pImageInfo = &storageInfo;
+  gpu.vk.vkUpdateDescriptorSets(gpu.device, 1, &storageWrite, 0, nullptr);
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, computeLayout_, 0, 1, &set, 0, nullptr);
   const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
   gpu.cmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);

@@ -48,6 +48,12 @@ class CompositePass {
                            const ImageRef& depth, VkImageLayout depthLayout, VkImageView target, VkExtent2D extent);
 
  private:
+  // A pass of the compute composite's layout: the frame, the depth, L_in sampled, and `storage`
+  // (the back buffer, or the L_in AOV's output) written over `extent`.
+  void recordWithComputeLayout(const Gpu& gpu, VkCommandBuffer cmd, VkDescriptorSet set, VkPipeline pipeline,
+                               VkBuffer constants, const ImageRef& depth, VkImageLayout depthLayout,
+                               VkImageView scattering, VkImageView storage, VkExtent2D extent);
+
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   // The T AOV's compute pass: its own set (the depth, T as a storage image).

@@ -95,21 +95,17 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarScenes,
 // slice_arc.h: High 7.6% -> 1.78%, Balanced 18% -> 3.41%).
 double sceneBar(Profile profile) { return samples::bench::profileGoal(profile)->maxSceneRelativeRmse; }
 
-// Measured defects, not bars: the profile table's local rows were chosen over spot-lamp and
-// stained-glass, and miss the bar on these scenes of thin blades and leaves next to the light
-// (docs/measurements/spot-accuracy-lavapipe.md has the cause and the rows that would hold them).
-// Each is held at its measured figure at 640×360 plus a tenth, so that it cannot get worse
-// unnoticed; every other check holds as for any scene.
+// Measured defects, not bars: spot-foliage's leaves cut shafts thinner than High's slice spacing
+// all over the cone, which interpolation across slices misses (docs/EPIPOLAR.md "Spot lights:
+// where the error is"). Each is held at its measured figure at 640×360 plus a tenth, so that it
+// cannot get worse unnoticed; every other check holds as for any scene.
 struct KnownMiss {
   const char* scene;
   Profile profile;
   double ceiling;
 };
 constexpr KnownMiss kKnownMisses[] = {
-    {"spot-fan", Profile::High, 0.0415},       // measured 3.77%
-    {"spot-foliage", Profile::High, 0.0748},   // measured 6.80%
-    {"spot-foliage", Profile::Balanced, 0.0785},  // measured 7.13%
-    {"spot-foliage", Profile::Performance, 0.302},  // measured 27.4%
+    {"spot-foliage", Profile::High, 0.0366},  // measured 3.33%
 };
 
 double barOf(const std::string& name, Profile profile) {
@@ -123,10 +119,13 @@ double barOf(const std::string& name, Profile profile) {
   return sceneBar(profile);
 }
 
-void expectProfilesMatchTheReference(const host::Scene& scene, const std::string& name) {
+// At 640×360 and above the profiles also march far fewer samples than pixels; below, a slice count
+// chosen for those sizes can exceed the pixels (`checkSampleShare` false: accuracy only).
+void expectProfilesMatchTheReference(const host::Scene& scene, const std::string& name, std::uint32_t width = 640,
+                                     std::uint32_t height = 360, bool checkSampleShare = true) {
   samples::RenderOptions o;
-  o.width = 640;
-  o.height = 360;
+  o.width = width;
+  o.height = height;
   o.technique = Technique::Reference;
   const samples::RenderResult reference = renderWithAovs(scene, o);
   o.technique = Technique::None;
@@ -142,9 +141,9 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
     o.profile = profile;
     const samples::RenderResult r = renderWithAovs(scene, o);
     const ErrorStats s = compareRgb(r.scattering, reference.scattering);
-    std::printf("[ %s %s ] vs reference: %s; %llu samples marched (%.1f%% of the pixels), %llu found in shadow "
-                "without marching, %.2f%% fixed up\n",
-                name.c_str(), to_string(profile), describe(s).c_str(),
+    std::printf("[ %s %s %ux%u ] vs reference: %s; %llu samples marched (%.1f%% of the pixels), %llu found in "
+                "shadow without marching, %.2f%% fixed up\n",
+                name.c_str(), to_string(profile), width, height, describe(s).c_str(),
                 static_cast<unsigned long long>(r.stats.epipolarCounts.value().marchedSamples),
                 100.0 * double(r.stats.epipolarCounts.value().marchedSamples) / pixels,
                 static_cast<unsigned long long>(r.stats.epipolarCounts.value().shadowedSamples), 100.0 * r.stats.epipolarCounts.value().fixedUpPixelFraction);
@@ -154,7 +153,9 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
     EXPECT_LE(s.relativeRmse, bar) << to_string(profile) << ": " << describe(s);
     errors[profile] = s.relativeRmse;
     EXPECT_GT(r.stats.epipolarCounts.value().marchedSamples, 0u);
-    EXPECT_LT(double(r.stats.epipolarCounts.value().marchedSamples), sampleShare * pixels) << to_string(profile);
+    if (checkSampleShare) {
+      EXPECT_LT(double(r.stats.epipolarCounts.value().marchedSamples), sampleShare * pixels) << to_string(profile);
+    }
   }
   // The profile that costs more is never the less accurate one on a scene. Differences under 0.05
   // points of relative RMSE, a sixtieth of High's bar, are the two sample layouts' noise (an
@@ -173,6 +174,24 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
                          ::testing::Values("pillars", "fence", "forest", "window-room", "spot-lamp",
                                            "stained-glass", "point-lamp", "spot-fan", "spot-grille",
                                            "spot-lattice", "spot-foliage"),
+                         [](const auto& test_param) {
+                           std::string name = test_param.param;
+                           for (char& c : name) c = c == '-' ? '_' : c;
+                           return name;
+                         });
+
+// The spot scenes again at 320×180, the smallest size the per-scene bars hold at: the fine shafts
+// next to the lamp are then only a few pixels from it. High's 512 slices march more samples than
+// the 57,600 pixels there, so only the accuracy is held.
+class EpipolarSpotProfilesSmall : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(EpipolarSpotProfilesSmall, EachProfileMatchesTheReference) {
+  expectProfilesMatchTheReference(loadTestScene(GetParam()), GetParam(), 320, 180, false);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarSpotProfilesSmall,
+                         ::testing::Values("spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice",
+                                           "spot-foliage"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;

@@ -110,5 +110,31 @@ TEST(EpipolarPlan, TheSlicesCoverTheWholeBorderAroundAnOnScreenEpipole) {
   EXPECT_FALSE(plan.stats.slicesFitOffScreenEpipole);
 }
 
+// A local light's occluders can sit next to it: by default its samples crowd towards it and the
+// march step shrinks faster there than a directional light's; a density in the settings wins.
+TEST(EpipolarPlan, ALocalLightGetsDenserSamplesAndStepsNextToIt) {
+  const EpipolarSettings defaults;
+  ASSERT_EQ(defaults.epipoleDensity, 0.0f);
+  const EpipolarFramePlan sun = planEpipolarFrame(TestFrame(LightType::Directional, 1024).frame, defaults, kExtent);
+  EXPECT_EQ(sun.constants.epipole_density, 1.0f);
+  EXPECT_EQ(sun.stats.epipoleDensity, 1.0f);
+  EXPECT_EQ(sun.constants.near_epipole_steps, gpu::TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS);
+  for (LightType type : {LightType::Spot, LightType::Point}) {
+    const TestFrame t(type, 1024);
+    const EpipolarFramePlan local = planEpipolarFrame(t.frame, defaults, kExtent);
+    EXPECT_EQ(local.constants.epipole_density, gpu::TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY);
+    EXPECT_EQ(local.stats.epipoleDensity, gpu::TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY);
+    EXPECT_EQ(local.constants.near_epipole_steps, gpu::TYN_EPIPOLAR_NEAR_LOCAL_LIGHT_STEPS);
+    EXPECT_GT(gpu::TYN_EPIPOLAR_NEAR_LOCAL_LIGHT_STEPS, gpu::TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS);
+    EpipolarSettings uniform;
+    uniform.epipoleDensity = 1.0f;
+    EXPECT_EQ(planEpipolarFrame(t.frame, uniform, kExtent).constants.epipole_density, 1.0f);
+  }
+  EpipolarSettings dense;
+  dense.epipoleDensity = 3.5f;
+  EXPECT_EQ(planEpipolarFrame(TestFrame(LightType::Directional, 1024).frame, dense, kExtent).constants.epipole_density,
+            3.5f);
+}
+
 }  // namespace
 }  // namespace tyndall

@@ -24,8 +24,16 @@ TYN_CONST uint TYN_EPIPOLAR_MARCH_GROUP = 64u;
 TYN_CONST uint TYN_EPIPOLAR_MAX_SAMPLES = 4096u;
 // Interpolation source of a sample past the slice's sample count.
 TYN_CONST uint TYN_EPIPOLAR_NO_SOURCE = 0xffffffffu;
-// Near the epipole the ray-marching step is at most 1/this of the distance to it (slice_setup.comp).
+// Near the epipole the ray-marching step is at most 1/this of the distance to it (slice_setup.comp):
+// for a directional light, whose L_in there follows the phase lobe smoothly, and for a spot or point
+// light, whose occluders can sit next to it and cut L_in at a scale proportional to that distance.
 TYN_CONST float TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS = 4.0f;
+TYN_CONST float TYN_EPIPOLAR_NEAR_LOCAL_LIGHT_STEPS = 16.0f;
+// The epipole density (EpipolarSettings::epipoleDensity) a spot or point light gets by default: with
+// improved placement the samples then lie 1/16 px apart at the light and 1 px at the border, so that
+// an occluder next to the light, which cuts L_in between two samples a pixel apart, falls between
+// samples (docs/EPIPOLAR.md "Spot lights: where the error is"). A directional light's is 1 (uniform).
+TYN_CONST float TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY = 16.0f;
 // An interval refine_intensity.comp refines is cut into this many (the initial step into quarters).
 TYN_CONST uint TYN_EPIPOLAR_SUBDIVISIONS = 4u;
 // Threads building one slice's min/max tree (one workgroup per slice).
@@ -83,7 +91,7 @@ struct EpipolarConstants {
   uint samples_per_slice;               // EpipolarSettings::samplesPerSlice
   uint improved_placement;              // 1: EpipolarSettings::improvedSamplePlacement
   uint initial_sample_step;             // every this-many-th sample is ray-marched
-  float epipole_density;                // EpipolarSettings::epipoleDensity
+  float epipole_density;                // EpipolarSettings::epipoleDensity, or the light's (≥ 1)
   float bilateral_depth_threshold;      // relative depth difference of the bilateral weights
   float fixup_weight_threshold;         // least bilateral weight before a pixel is fixed up
   float epipole_block_radius;           // pixels around an on-screen epipole always fixed up
@@ -91,7 +99,8 @@ struct EpipolarConstants {
   float intensity_refinement_threshold; // relative L_in difference that subdivides an interval
   float slice_contrast_threshold;       // relative L_in difference between a pixel's two slices
                                         // that sends it to the fix-up (1: never)
-  float pad0;
+  float near_epipole_steps;             // the march step is at most 1/this of the distance to the
+                                        // epipole (TYN_EPIPOLAR_NEAR_*_STEPS)
   uint tree_samples;                    // 1D samples per slice L (a power of two ≥ the shadow-map
                                         // size); 0 for a point light, which marches no slice line
   uint tree_top_level;                  // highest tree level the march may use (yusov2013's

@@ -167,7 +167,7 @@ shared uint tyn_base;
 bool tyn_depth_break(float a, float b) { return abs(a - b) > epipolar.depth_break_threshold * min(a, b); }
 
 // The ray-marching step at sample k: the initial step, but near the epipole at most
-// 1/TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS of the distance to it (a power of two, so the steps nest).
+// 1/near_epipole_steps of the distance to it (a power of two, so the steps nest).
 // L_in of a local light grows like 1/(distance to the epipole) there and a phase lobe peaks there:
 // linear interpolation of 1/r over a step Δ ≤ r/8 is off by at most Δ²/(4r²) < 0.4%, where a fixed
 // step next to the light would interpolate from the light's own (unbounded) value.
@@ -177,7 +177,7 @@ uint tyn_march_step(vec2 here, vec2 next) {
     vec2 extent = tyn_output_extent();
     float to_epipole = length((here - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent);
     float spacing = max(length((next - here) * 0.5 * extent), 1e-6);
-    uint steps = uint(clamp(to_epipole / (TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS * spacing), 1.0, float(step)));
+    uint steps = uint(clamp(to_epipole / (epipolar.near_epipole_steps * spacing), 1.0, float(step)));
     step = min(step, 1u << findMSB(steps));
   }
   return step;

@@ -17,6 +17,9 @@ enum class EpipolarMarch : std::uint32_t {
 struct EpipolarStats {
   std::uint32_t slices = 0;           ///< the settings that ran (profile table or FrameDesc::epipolar)
   std::uint32_t samplesPerSlice = 0;
+  /// Last / first sample spacing along a slice that ran: the settings' epipoleDensity, or the
+  /// light's when that is 0 (1 for a directional light, 16 for a spot or point light).
+  float epipoleDensity = 1.0f;
   EpipolarMarch march = EpipolarMarch::MinMaxTree;
   /// Fraction of the screen border the slices' end points cover: 1 for the whole border, less
   /// where only a spot cone's wedge or an off-screen epipole's wedge can hold shafts.

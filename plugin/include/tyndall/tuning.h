@@ -24,7 +24,10 @@ struct EpipolarSettings {
   /// samples (shadow and cone edges crossing a slice, fast falloff). (0, 1], default 0.2;
   /// 1 turns the second round off (its passes are then not recorded).
   float intensityRefinementThreshold = 0.2f;
-  float epipoleDensity = 1.0f;           ///< last / first sample spacing along a slice, [1, 1000]; 1 = uniform
+  /// Last / first sample spacing along a slice, [1, 1000] (1: uniform), or 0 (default): by the
+  /// light, 1 for a directional light, 16 for a spot or point light, whose occluders next to it cut
+  /// L_in within a pixel there (docs/EPIPOLAR.md "Spot lights: where the error is").
+  float epipoleDensity = 0.0f;
   /// March along each slice's 1D min/max binary tree (yusov2013): same result as without, fewer
   /// steps. Directional and spot lights with shadow maps up to 4096²; point lights and larger maps
   /// march without it (the stats' techniqueNote says so). Default true.

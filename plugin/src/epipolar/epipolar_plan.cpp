@@ -38,7 +38,11 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.depth_break_threshold = settings.refinementThreshold;
   k.intensity_refinement_threshold = settings.intensityRefinementThreshold;
   k.slice_contrast_threshold = settings.sliceContrastThreshold;
-  k.epipole_density = settings.epipoleDensity;
+  // A local light's occluders can sit next to it, where L_in changes within a pixel: denser
+  // samples and a finer march step there (epipolar_constants.h).
+  const bool local = light.type != LightType::Directional;
+  k.epipole_density = effectiveEpipoleDensity(settings, light.type);
+  k.near_epipole_steps = local ? gpu::TYN_EPIPOLAR_NEAR_LOCAL_LIGHT_STEPS : gpu::TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS;
   k.bilateral_depth_threshold = settings.bilateralDepthThreshold;
   k.fixup_weight_threshold = settings.fixupWeightThreshold;
   k.epipole_block_radius = epipoleBlockRadius(settings, extent.height);
@@ -70,6 +74,11 @@ EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSetti
 
 }  // namespace
 
+float effectiveEpipoleDensity(const EpipolarSettings& settings, LightType light) {
+  if (settings.epipoleDensity > 0.0f) return settings.epipoleDensity;
+  return light == LightType::Directional ? 1.0f : gpu::TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY;
+}
+
 // The epipolar part of the note: how it marched, and where the slices went (slice_arc.h).
 std::string epipolarNote(const EpipolarStats& s) {
   std::string note;
@@ -95,8 +104,13 @@ EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettin
   SliceArc arc;
   plan.constants = epipolarConstants(frame, settings, extent, arc);
   gpu::EpipolarConstants& k = plan.constants;
-  plan.stats = EpipolarStats{settings.slices, settings.samplesPerSlice, epipolarMarch(k, settings, frame.light.type),
-                             arc.fraction, arc.cone, arc.screen};
+  plan.stats = EpipolarStats{settings.slices,
+                             settings.samplesPerSlice,
+                             k.epipole_density,
+                             epipolarMarch(k, settings, frame.light.type),
+                             arc.fraction,
+                             arc.cone,
+                             arc.screen};
   plan.treeSamples = k.tree_enabled != 0 ? k.tree_samples : 0;
   // The light-colour texture's sums along the slices' lines, for the march along them.
   plan.colorSamples = k.colored_chunk != 0 ? k.tree_samples : 0;

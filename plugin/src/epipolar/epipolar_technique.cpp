@@ -83,8 +83,8 @@ Outcome validateEpipolarSettings(const EpipolarSettings& s) {
   if (s.samplesPerSlice < 2 || s.samplesPerSlice > gpu::TYN_EPIPOLAR_MAX_SAMPLES) {
     return invalid("epipolar.samplesPerSlice must be in 2..4096");
   }
-  if (!(s.epipoleDensity >= 1.0f && s.epipoleDensity <= 1000.0f)) {
-    return invalid("epipolar.epipoleDensity must be in [1, 1000]");
+  if (!(s.epipoleDensity == 0.0f || (s.epipoleDensity >= 1.0f && s.epipoleDensity <= 1000.0f))) {
+    return invalid("epipolar.epipoleDensity must be 0 (the light's) or in [1, 1000]");
   }
   if (!(s.bilateralDepthThreshold > 0.0f && s.bilateralDepthThreshold <= 1.0f)) {
     return invalid("epipolar.bilateralDepthThreshold must be in (0, 1]");

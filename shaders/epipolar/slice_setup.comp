@@ -169,8 +169,9 @@ bool tyn_depth_break(float a, float b) { return abs(a - b) > epipolar.depth_brea
 // The ray-marching step at sample k: the initial step, but near the epipole at most
 // 1/near_epipole_steps of the distance to it (a power of two, so the steps nest).
 // L_in of a local light grows like 1/(distance to the epipole) there and a phase lobe peaks there:
-// linear interpolation of 1/r over a step Δ ≤ r/8 is off by at most Δ²/(4r²) < 0.4%, where a fixed
-// step next to the light would interpolate from the light's own (unbounded) value.
+// linear interpolation of 1/r over a step Δ is off by at most Δ²/(4r²) of it (1.6% for Δ = r/4,
+// 0.1% for r/16), where a fixed step next to the light would interpolate from the light's own
+// (unbounded) value.
 uint tyn_march_step(vec2 here, vec2 next) {
   uint step = epipolar.initial_sample_step;
   if (epipolar.epipole.z > 0.0) {

@@ -14,6 +14,13 @@ namespace tyndall {
 
 namespace {
 
+// The epipole density a frame with `light` runs with: the settings' when set (≥ 1), else 1 for a
+// directional light and TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY for a spot or point light.
+float effectiveEpipoleDensity(const EpipolarSettings& settings, LightType light) {
+  if (settings.epipoleDensity > 0.0f) return settings.epipoleDensity;
+  return light == LightType::Directional ? 1.0f : gpu::TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY;
+}
+
 // Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
 // the shaders would run (shaders/epipolar/epipolar_geometry.h).
 // `arc` is the frame's slice arc (slice_arc.h), found from the epipole computed here.
@@ -40,9 +47,9 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.slice_contrast_threshold = settings.sliceContrastThreshold;
   // A local light's occluders can sit next to it, where L_in changes within a pixel: denser
   // samples and a finer march step there (epipolar_constants.h).
-  const bool local = light.type != LightType::Directional;
   k.epipole_density = effectiveEpipoleDensity(settings, light.type);
-  k.near_epipole_steps = local ? gpu::TYN_EPIPOLAR_NEAR_LOCAL_LIGHT_STEPS : gpu::TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS;
+  k.near_epipole_steps = light.type == LightType::Directional ? gpu::TYN_EPIPOLAR_NEAR_EPIPOLE_STEPS
+                                                              : gpu::TYN_EPIPOLAR_NEAR_LOCAL_LIGHT_STEPS;
   k.bilateral_depth_threshold = settings.bilateralDepthThreshold;
   k.fixup_weight_threshold = settings.fixupWeightThreshold;
   k.epipole_block_radius = epipoleBlockRadius(settings, extent.height);
@@ -73,11 +80,6 @@ EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSetti
 }
 
 }  // namespace
-
-float effectiveEpipoleDensity(const EpipolarSettings& settings, LightType light) {
-  if (settings.epipoleDensity > 0.0f) return settings.epipoleDensity;
-  return light == LightType::Directional ? 1.0f : gpu::TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY;
-}
 
 // The epipolar part of the note: how it marched, and where the slices went (slice_arc.h).
 std::string epipolarNote(const EpipolarStats& s) {

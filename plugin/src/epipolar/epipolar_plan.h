@@ -22,10 +22,6 @@ struct EpipolarFramePlan {
 /// and light-colour texture.
 EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent);
 
-/// The epipole density a frame with `light` runs with: the settings' when set (≥ 1), else 1 for a
-/// directional light and TYN_EPIPOLAR_LOCAL_LIGHT_DENSITY for a spot or point light.
-float effectiveEpipoleDensity(const EpipolarSettings& settings, LightType light);
-
 /// The plan's part of Stats::techniqueNote ("" when the march is the tree's and the slices cover
 /// the whole border), starting with "; ".
 std::string epipolarNote(const EpipolarStats& stats);

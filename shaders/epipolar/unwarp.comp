@@ -24,11 +24,22 @@ layout(local_size_x = TYN_PIXEL_GROUP_SIZE, local_size_y = TYN_PIXEL_GROUP_SIZE)
 // ground seen at a grazing angle (5-15% per pixel on spot-lamp's far ground) were rejected: with
 // improved placement's one-pixel spacing the pixel then kept only the sample on its far side
 // (always the same side over many pixels) and took its value, where L_in changes by 2-5% per pixel.
-bool tyn_on_pixel_surface(vec4 coordinates, vec2 pixel_centre, float depth, vec2 slopes, float distance) {
+// `tolerance_scale` is the length the threshold is relative to (tyn_surface_tolerance_scale).
+bool tyn_on_pixel_surface(vec4 coordinates, vec2 pixel_centre, float depth, vec2 slopes, float tolerance_scale) {
   if (coordinates.w < 0.5) return false;
   vec2 offset = tyn_pixel_from_ndc(coordinates.xy, tyn_output_extent()) - pixel_centre;
   float expected = tyn_view_distance(coordinates.xy, tyn_epipolar_depth_at(depth, slopes, offset));
-  return abs(coordinates.z - expected) <= epipolar.bilateral_depth_threshold * distance;
+  return abs(coordinates.z - expected) <= epipolar.bilateral_depth_threshold * tolerance_scale;
+}
+
+// The bilateral threshold is relative to the pixel's ray length, and next to a spot or point light
+// to the surface's distance d from the light if that is shorter: a ray that ends Δs further there
+// gathers about Δs/d more of its L_in (the light's 1/d² fall-off), so that a leaf a few per cent
+// behind the pixel's, next to the lamp, is not the pixel's surface.
+float tyn_surface_tolerance_scale(vec2 ndc, float depth, float distance) {
+  if (frame.light_type == TYN_LIGHT_DIRECTIONAL) return distance;
+  TynViewRay ray = tyn_view_ray_ndc(ndc, depth);
+  return min(distance, length(ray.origin + ray.direction * distance - frame.light_position));
 }
 
 // L_in of sample k of a slice (yusov2013's interpolation along the slices): its own when it was
@@ -58,6 +69,7 @@ void tyn_unwarp(uvec2 target_pixel) {
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   float distance = tyn_view_distance(ndc, depth);
+  float tolerance_scale = tyn_surface_tolerance_scale(ndc, depth, distance);
 
   vec2 pixel_centre = vec2(pixel) + 0.5;
   vec2 slopes = tyn_epipolar_depth_slopes(ivec2(pixel), depth);
@@ -105,7 +117,7 @@ void tyn_unwarp(uvec2 target_pixel) {
       float index = t == 0 ? k0 : k1;
       float tap_weight = t == 0 ? 1.0 - along : along;
       vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(index), int(slice)));
-      on_surface[t] = tap_weight > 0.0 && tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, distance);
+      on_surface[t] = tap_weight > 0.0 && tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, tolerance_scale);
       values[t] = on_surface[t] ? tyn_sample_in_scattering(int(index), int(slice)) : vec3(0.0);
     }
     if (on_surface[0] && on_surface[1]) {
@@ -134,7 +146,7 @@ void tyn_unwarp(uvec2 target_pixel) {
       vec3 value = values[t];
       if (reach > 0.0 && beyond >= 0.0 && beyond < float(count)) {
         vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(beyond), int(slice)));
-        if (tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, distance)) {
+        if (tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, tolerance_scale)) {
           vec3 next = tyn_sample_in_scattering(int(beyond), int(slice));
           value = max(value + (value - next) * reach, vec3(0.0));
         }

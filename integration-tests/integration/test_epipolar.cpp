@@ -95,30 +95,6 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarScenes,
 // slice_arc.h: High 7.6% -> 1.78%, Balanced 18% -> 3.41%).
 double sceneBar(Profile profile) { return samples::bench::profileGoal(profile)->maxSceneRelativeRmse; }
 
-// Measured defects, not bars: spot-foliage's leaves cut shafts thinner than High's slice spacing
-// all over the cone, which interpolation across slices misses (docs/EPIPOLAR.md "Spot lights:
-// where the error is"). Each is held at its measured figure at 640×360 plus a tenth, so that it
-// cannot get worse unnoticed; every other check holds as for any scene.
-struct KnownMiss {
-  const char* scene;
-  Profile profile;
-  double ceiling;
-};
-constexpr KnownMiss kKnownMisses[] = {
-    {"spot-foliage", Profile::High, 0.0366},  // measured 3.33%
-};
-
-double barOf(const std::string& name, Profile profile) {
-  for (const KnownMiss& m : kKnownMisses) {
-    if (name == m.scene && profile == m.profile) {
-      std::printf("[ known miss ] %s %s held at %.2f%% (bar %.0f%%)\n", m.scene, to_string(profile), 100.0 * m.ceiling,
-                  100.0 * sceneBar(profile));
-      return m.ceiling;
-    }
-  }
-  return sceneBar(profile);
-}
-
 // At 640×360 and above the profiles also march far fewer samples than pixels; below, a slice count
 // chosen for those sizes can exceed the pixels (`checkSampleShare` false: accuracy only).
 void expectProfilesMatchTheReference(const host::Scene& scene, const std::string& name, std::uint32_t width = 640,
@@ -137,7 +113,7 @@ void expectProfilesMatchTheReference(const host::Scene& scene, const std::string
   std::map<Profile, double> errors;
   for (const auto& [profile, sampleShare] : {std::pair{Profile::High, 0.6}, std::pair{Profile::Balanced, 0.25},
                                              std::pair{Profile::Performance, 0.25}}) {
-    const double bar = barOf(name, profile);
+    const double bar = sceneBar(profile);
     o.profile = profile;
     const samples::RenderResult r = renderWithAovs(scene, o);
     const ErrorStats s = compareRgb(r.scattering, reference.scattering);

@@ -18,7 +18,10 @@ tradeoffs    tyndall-bench's default sweep (every sample scene but the analytic 
              SIZES (1280x720: where users run it), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default),
              BENCH_OUT (out/tradeoffs); FROM=RESULTS.json writes the document again from an earlier
              run without measuring (FROM=docs/data/tradeoffs-lavapipe-results.json: the run
-             docs/TRADEOFFS.md shows); DOC (docs/TRADEOFFS.md, whose choice is the code's profile
+             docs/TRADEOFFS.md shows); KEEP_FROM=RESULTS.json measures only SCENES and takes the
+             other scenes' rows from that earlier run (every scene of a kind of light must be
+             measured again together: a profile row is chosen over its kind's scenes; the run's
+             results.json is then the merged file); DOC (docs/TRADEOFFS.md, whose choice is the code's profile
              table; another path keeps another device's run beside it, e.g.
              DOC=docs/TRADEOFFS-H200.md); PYTHON (the first python3 on PATH with matplotlib).
              On a GPU pass SIZES=1920x1080 SHADOW_MAPS=2048 for the issue's goals.
@@ -84,12 +87,21 @@ part_tradeoffs() {
     local args=(--sizes "${SIZES:-1280x720}" --shadow-maps "${SHADOW_MAPS:-2048}" --frames "${FRAMES:-20}" --out "$out")
     [ -n "${SCENES:-}" ] && args+=(--scenes "$SCENES")
     "$bench" "${args[@]}"
+    if [ -n "${KEEP_FROM:-}" ]; then
+      [ -n "${SCENES:-}" ] || { echo "KEEP_FROM needs SCENES: the scenes to measure again" >&2; exit 1; }
+      cp "$KEEP_FROM" "$out/kept-results.json"
+      "$python" scripts/lib/merge_results.py "$out/results.json" "$out/kept-results.json" "$out/merged-results.json"
+      "$bench" --from "$out/merged-results.json" --out "$out"
+    fi
   fi
   "$python" scripts/plot-pareto.py "$out/pareto.json" "$out" >/dev/null
   doc="${DOC:-docs/TRADEOFFS.md}"
   if [ "$doc" = docs/TRADEOFFS.md ]; then
     cp "$out/tradeoffs.md" "$doc"
     cp "$out/choice.json" docs/data/tradeoffs-lavapipe-choice.json
+    # The run the document shows, for FROM and KEEP_FROM.
+    cmp -s "$out/results.json" docs/data/tradeoffs-lavapipe-results.json ||
+      cp "$out/results.json" docs/data/tradeoffs-lavapipe-results.json
   else
     # Another device's or size's run: its choice is a measurement, not the code's profile table.
     { head -n 1 "$out/tradeoffs.md"

@@ -89,8 +89,7 @@ part_tradeoffs() {
     "$bench" "${args[@]}"
     if [ -n "${KEEP_FROM:-}" ]; then
       [ -n "${SCENES:-}" ] || { echo "KEEP_FROM needs SCENES: the scenes to measure again" >&2; exit 1; }
-      cp "$KEEP_FROM" "$out/kept-results.json"
-      "$python" scripts/lib/merge_results.py "$out/results.json" "$out/kept-results.json" "$out/merged-results.json"
+      "$python" scripts/lib/merge_results.py "$out/results.json" "$KEEP_FROM" "$out/merged-results.json"
       "$bench" --from "$out/merged-results.json" --out "$out"
     fi
   fi
@@ -99,9 +98,7 @@ part_tradeoffs() {
   if [ "$doc" = docs/TRADEOFFS.md ]; then
     cp "$out/tradeoffs.md" "$doc"
     cp "$out/choice.json" docs/data/tradeoffs-lavapipe-choice.json
-    # The run the document shows, for FROM and KEEP_FROM.
-    cmp -s "$out/results.json" docs/data/tradeoffs-lavapipe-results.json ||
-      cp "$out/results.json" docs/data/tradeoffs-lavapipe-results.json
+    cp "$out/results.json" docs/data/tradeoffs-lavapipe-results.json  # the run shown, for FROM and KEEP_FROM
   else
     # Another device's or size's run: its choice is a measurement, not the code's profile table.
     { head -n 1 "$out/tradeoffs.md"

@@ -36,10 +36,10 @@ bool tyn_on_pixel_surface(vec4 coordinates, vec2 pixel_centre, float depth, vec2
 // to the surface's distance d from the light if that is shorter: a ray that ends Δs further there
 // gathers about Δs/d more of its L_in (the light's 1/d² fall-off), so that a leaf a few per cent
 // behind the pixel's, next to the lamp, is not the pixel's surface.
-float tyn_surface_tolerance_scale(vec2 ndc, float depth, float distance) {
+float tyn_surface_tolerance_scale(vec2 ndc, float distance) {
   if (frame.light_type == TYN_LIGHT_DIRECTIONAL) return distance;
-  TynViewRay ray = tyn_view_ray_ndc(ndc, depth);
-  return min(distance, length(ray.origin + ray.direction * distance - frame.light_position));
+  vec3 surface = frame.view_to_world[3].xyz + tyn_view_direction(ndc) * distance;
+  return min(distance, length(surface - frame.light_position));
 }
 
 // L_in of sample k of a slice (yusov2013's interpolation along the slices): its own when it was
@@ -69,7 +69,7 @@ void tyn_unwarp(uvec2 target_pixel) {
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   float distance = tyn_view_distance(ndc, depth);
-  float tolerance_scale = tyn_surface_tolerance_scale(ndc, depth, distance);
+  float tolerance_scale = tyn_surface_tolerance_scale(ndc, distance);
 
   vec2 pixel_centre = vec2(pixel) + 0.5;
   vec2 slopes = tyn_epipolar_depth_slopes(ivec2(pixel), depth);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the spot-light scenes of thin, many-bladed occluders: samples/scenes/spot-{fan,grille,lattice,foliage}.json.
+"""Writes the spot-light scenes of thin, many-bladed occluders: samples/scenes/spot-{fan,grille,lattice,foliage,street}.json.
 
 Each has a 35-degree spot light whose cone is cut into fine shafts by thin boxes, seen from a
 different place relative to the cone:
@@ -8,11 +8,13 @@ different place relative to the cone:
     spot-grille   a grille of thin parallel bars; camera inside the cone, under the grille
     spot-lattice  a lattice of crossed thin bars turned 20 degrees; camera on the cone's outer edge
     spot-foliage  400 small leaf cards at random rotations (fixed seed); camera outside the cone
+    spot-street   a street lamp tilted over a railing of thin bars, seen from 60 m: the lit cone is a
+                  few dozen pixels and its footprint on the ground a pixel or two high
 
 The layout is deterministic: the leaves come from SplitMix64 with a fixed seed (scripts/lib/splitmix.py, so
 the output does not depend on the Python version's random module). Run from anywhere:
 
-    python3 scripts/generate-spot-scenes.py            # rewrites the four scene files
+    python3 scripts/generate-spot-scenes.py            # rewrites the five scene files
     python3 scripts/generate-spot-scenes.py --check    # exits 1 if a committed file is out of date
 """
 import argparse
@@ -123,7 +125,24 @@ def foliage():
     }
 
 
-SCENES = {"spot-fan": fan, "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage}
+def street():
+    # 41 bars 15 cm apart, 2 m tall, and a top rail, half a metre in front of the lamp's post.
+    objects = [box([0.15 * i, 1.0, 0.5], [0.02, 1.0, 0.02]) for i in range(-20, 21)]
+    objects += [box([0, 2.0, 0.5], [3.2, 0.03, 0.03]), box([0, 5.2, 0], [0.3, 0.1, 0.3], albedo=[0.1, 0.1, 0.1])]
+    return {
+        "description": "A 35-degree street lamp tilted over a railing of thin bars, seen from 60 m along the "
+                       "street: the lit cone covers a few dozen pixels and its footprint on the ground a pixel "
+                       "or two of height.",
+        "camera": '{"position": [25, 1.7, 55], "target": [0, 2.5, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 50, "near": 0.1, "far": 400}',
+        "light": '{"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0.35], "color": [1.0, 0.85, 0.6],\n'
+                 '            "intensity": 120, "innerConeDegrees": 30, "outerConeDegrees": 35}',
+        "objects": objects,
+    }
+
+
+SCENES = {"spot-fan": fan, "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage,
+          "spot-street": street}
 
 
 def scene_text(scene):

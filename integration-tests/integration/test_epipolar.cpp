@@ -149,7 +149,7 @@ TEST_P(EpipolarProfiles, EachProfileMatchesTheReference) {
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
                          ::testing::Values("pillars", "fence", "forest", "window-room", "spot-lamp",
                                            "stained-glass", "point-lamp", "spot-fan", "spot-grille",
-                                           "spot-lattice", "spot-foliage"),
+                                           "spot-lattice", "spot-foliage", "spot-street"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;
@@ -167,7 +167,7 @@ TEST_P(EpipolarSpotProfilesSmall, EachProfileMatchesTheReference) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarSpotProfilesSmall,
                          ::testing::Values("spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice",
-                                           "spot-foliage"),
+                                           "spot-foliage", "spot-street"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;

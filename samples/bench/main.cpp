@@ -20,8 +20,8 @@ const char* const kUsage =
     "         [--no-storage-back-buffer]\n"
     "       tyndall-bench --from RESULTS.json [--choose-at WxH/N] [--out DIR]\n"
     "  --scenes: names in samples/scenes/ or scene files (default: the directional pillars,fence,forest,\n"
-    "            window-room, the spot spot-lamp,stained-glass,spot-fan,spot-grille,spot-lattice,spot-foliage\n"
-    "            and the point point-lamp: a profile row is chosen over every scene of its kind of light)\n"
+    "            window-room, the spot spot-lamp,stained-glass,spot-fan,spot-grille,spot-lattice,spot-foliage,\n"
+    "            spot-street and the point point-lamp: a profile row is chosen over every scene of its kind of light)\n"
     "  --sizes / --shadow-maps: output sizes and shadow-map sizes (default 640x360 / 2048)\n"
     "  --grid: the built-in configurations (default: default; full: more); --config adds one: epipolar:KEY=VALUE,...\n"
     "          or prefiltered:KEY=VALUE,... in tyndall-render's --epipolar / --prefiltered syntax\n"
@@ -76,9 +76,9 @@ int main(int argc, char** argv) {
   std::string chooseAt;
   std::string from;
   std::vector<std::string> scenes{
-      "pillars",   "fence",         "forest",   "window-room",                                   // directional
-      "spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice", "spot-foliage",  // spot
-      "point-lamp"};                                                                            // point
+      "pillars", "fence", "forest", "window-room",  // directional
+      "spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice", "spot-foliage", "spot-street",  // spot
+      "point-lamp"};  // point
   context.commandLine = "tyndall-bench";
   for (int i = 1; i < argc; ++i) context.commandLine += std::string(" ") + argv[i];
 

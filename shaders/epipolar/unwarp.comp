@@ -5,7 +5,9 @@
 // where only one of the two is, the pixel extrapolates along the slice from that sample and the
 // next one on its surface. A pixel left with too little weight (a depth break no sample saw), or
 // whose two slices disagree by more than the slice-contrast threshold (a shaft or colour edge
-// between them, narrower than their spacing), is appended to the fix-up list. A pixel off the
+// between them, narrower than their spacing), or on a surface so grazing in a local light's beam
+// that its ray length changes by more than the bilateral tolerance within a pixel while its taps
+// differ (TYN_GRAZING_CONTRAST), is appended to the fix-up list. A pixel off the
 // slices' arc has L_in = 0. T is the composite's (exact per pixel). The samples that were not
 // ray-marched are interpolated along their slice here, from the ones that were; the last workgroup
 // sizes the fix-up.
@@ -61,6 +63,11 @@ bool tyn_epipolar_contrast(vec3 a, vec3 b, float threshold) {
   return any(greaterThan(abs(a - b), threshold * max(max(a, b), vec3(1e-30))));
 }
 
+// How much two taps on a grazing surface in a local light's beam may differ (of the larger) and
+// still be interpolated: across the beam's footprint edge L_in changes by tens of per cent within
+// a sample spacing, while along the surface elsewhere it changes by a few.
+const float TYN_GRAZING_CONTRAST = 0.1;
+
 // `target_pixel`: the L_in target's; its depth, ray and position are those of the output pixel it
 // stands for (at reduced resolution one of its block's), in output pixels like the slices.
 void tyn_unwarp(uvec2 target_pixel) {
@@ -113,12 +120,16 @@ void tyn_unwarp(uvec2 target_pixel) {
     float along = k - k0;
     bool on_surface[2];
     vec3 values[2];
+    float ray_lengths[2];
+    vec2 tap_pixels[2];
     for (int t = 0; t < 2; ++t) {
       float index = t == 0 ? k0 : k1;
       float tap_weight = t == 0 ? 1.0 - along : along;
       vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(index), int(slice)));
       on_surface[t] = tap_weight > 0.0 && tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, tolerance_scale);
       values[t] = on_surface[t] ? tyn_sample_in_scattering(int(index), int(slice)) : vec3(0.0);
+      ray_lengths[t] = coordinates.z;
+      tap_pixels[t] = tyn_pixel_from_ndc(coordinates.xy, extent);
     }
     if (on_surface[0] && on_surface[1]) {
       slice_sum[s] = slice_weight * mix(values[0], values[1], along);
@@ -129,6 +140,18 @@ void tyn_unwarp(uvec2 target_pixel) {
       // the jump is many times the frame's mean L_in and such pixels dominate the error.
       if (epipolar.slice_contrast_threshold < 1.0 && along > 0.0 && along < 1.0 &&
           tyn_epipolar_contrast(values[0], values[1], epipolar.slice_contrast_threshold)) {
+        along_edge = true;
+      }
+      // Ground seen at a grazing angle inside a local light's beam: both taps lie on the pixel's
+      // plane, but its ray length changes by more than the bilateral tolerance within one pixel,
+      // and L_in, which grows with the ray's length there, can change many-fold between the taps
+      // (the beam's footprint on a distant floor is a pixel or two high). Linear interpolation of
+      // that curve is off by its whole curvature, along the whole row; such a pixel is ray-marched.
+      // Per pixel, not per tap, so that sparser samples on an ordinary floor do not qualify.
+      float tap_spacing = max(length(tap_pixels[1] - tap_pixels[0]), 1.0);
+      if (frame.light_type != TYN_LIGHT_DIRECTIONAL && along > 0.0 && along < 1.0 &&
+          abs(ray_lengths[0] - ray_lengths[1]) > epipolar.bilateral_depth_threshold * tolerance_scale * tap_spacing &&
+          tyn_epipolar_contrast(values[0], values[1], TYN_GRAZING_CONTRAST)) {
         along_edge = true;
       }
     } else if (on_surface[0] || on_surface[1]) {

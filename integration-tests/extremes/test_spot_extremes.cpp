@@ -1,14 +1,9 @@
 // The extremes suite (ctest label `extremes`), its spot-cone cases: every profile with the camera
 // outside the spot light's cone (spot-lamp as it is), inside it looking out sideways, and exactly
 // on its outer boundary, and a lamp inside its shade (an occluder's bounding box), as a spot light
-// and as a point light. Against the
-// Reference, as extremes_support.h says. At 320×180: at the suite's usual 160×90, spot-lamp from
-// outside the cone misses (High 6.0%, Balanced 6.5% against bars of 4% and 8%; 7.7% and 8.1%
-// before the unwarp fix described below; docs/EXTREMES.md has the command). Half of High's
-// squared error there is one pixel of sky just above the hanging ball, 11 px from the light: the
-// ball's shadow makes L_in fall steeply towards its silhouette, and with improved placement's
-// one-pixel spacing the nearest sample above the silhouette is up to a pixel away
-// (`improved-placement=0` gives 2.4%, ray-marching the pixels within 40 px of the light 0.8%).
+// and as a point light, against the Reference as extremes_support.h says. At 320×180 rather than
+// the suite's 160×90: there the hanging ball's silhouette, where L_in falls steeply, is a pixel or
+// two from the light, closer than a sample spacing can follow.
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -58,24 +53,11 @@ TEST(SpotExtremes, CameraOutsideInsideAndOnTheCone) {
 // host's shadow frustum starts at its minimum near distance (10⁻³ of its far distance), the
 // walls are within 0.8 units of the light, and the beam leaves through the opening.
 //
-// This case found a defect of the epipolar unwarp next to a spot light, now fixed (High 5.1% →
-// 3.4%, Balanced 5.3% → 3.9%, Performance 5.1% → 3.6%). On the far ground under the lamp, seen at
-// a grazing angle, the view-ray length changes by 5–15% per pixel, more than the unwarp's 5%
-// bilateral threshold: each pixel rejected its taps one pixel away and kept only the sample
-// inside it, which improved placement's ~1-pixel spacing puts at the same sub-pixel offset (about
-// 0.4 px below the centre) over many rows, so the pixel took L_in from there, where L_in changes
-// by ~5% per pixel (−2% on every row). Nearer, on ground inside the beam, each sample's ray ended
-// at the depth of its pixel's centre instead of at its own position (up to half a pixel's 3–5%
-// change of ray length), at that same offset again, so the samples were biased alike (−0.5 to −1%
-// per row); and along silhouettes a pixel with samples of its surface on one side only took the
-// nearest one's value. The unwarp now tests taps against the pixel's plane in the depth buffer
-// and extrapolates linearly on one-sided slices, and samples end on their pixel's plane
-// (shaders/epipolar/epipolar_geometry.h, "The surface around a pixel").
-// What is left is mostly the box's top face, a sliver one pixel high inside the beam where L_in
-// changes by ~35% per pixel (14% low): its one sample on a slice is up to a pixel away
-// (ray-marching the pixels within 80 px of the light, `epipole-radius=80`, leaves 0.06%). At the
-// worst pixels the Reference agrees to 10⁻⁵ with a double-precision CPU integral of the
-// radiometry; docs/EXTREMES.md has the scene as JSON and the commands.
+// The far ground under the lamp is seen at a grazing angle, where the view-ray length changes by
+// more than the unwarp's bilateral threshold per pixel, and the box's top face is a sliver one
+// pixel high inside the beam: the case holds the unwarp's test of taps against the pixel's plane
+// and samples whose rays end at their own position (epipolar_geometry.h, "The surface around a
+// pixel"). docs/EXTREMES.md has the scene as JSON and the commands.
 host::Scene lampInsideItsShade() {
   host::Scene scene = loadTestScene("spot-lamp");
   // spot-lamp's ball hanging at 4.5 units would be inside the shade.

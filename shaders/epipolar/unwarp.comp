@@ -120,16 +120,14 @@ void tyn_unwarp(uvec2 target_pixel) {
     float along = k - k0;
     bool on_surface[2];
     vec3 values[2];
-    float ray_lengths[2];
-    vec2 tap_pixels[2];
+    vec4 taps[2];
     for (int t = 0; t < 2; ++t) {
       float index = t == 0 ? k0 : k1;
       float tap_weight = t == 0 ? 1.0 - along : along;
       vec4 coordinates = imageLoad(epipolar_coordinates, ivec2(int(index), int(slice)));
       on_surface[t] = tap_weight > 0.0 && tyn_on_pixel_surface(coordinates, pixel_centre, depth, slopes, tolerance_scale);
       values[t] = on_surface[t] ? tyn_sample_in_scattering(int(index), int(slice)) : vec3(0.0);
-      ray_lengths[t] = coordinates.z;
-      tap_pixels[t] = tyn_pixel_from_ndc(coordinates.xy, extent);
+      taps[t] = coordinates;
     }
     if (on_surface[0] && on_surface[1]) {
       slice_sum[s] = slice_weight * mix(values[0], values[1], along);
@@ -148,11 +146,13 @@ void tyn_unwarp(uvec2 target_pixel) {
       // (the beam's footprint on a distant floor is a pixel or two high). Linear interpolation of
       // that curve is off by its whole curvature, along the whole row; such a pixel is ray-marched.
       // Per pixel, not per tap, so that sparser samples on an ordinary floor do not qualify.
-      float tap_spacing = max(length(tap_pixels[1] - tap_pixels[0]), 1.0);
-      if (frame.light_type != TYN_LIGHT_DIRECTIONAL && along > 0.0 && along < 1.0 &&
-          abs(ray_lengths[0] - ray_lengths[1]) > epipolar.bilateral_depth_threshold * tolerance_scale * tap_spacing &&
-          tyn_epipolar_contrast(values[0], values[1], TYN_GRAZING_CONTRAST)) {
-        along_edge = true;
+      if (frame.light_type != TYN_LIGHT_DIRECTIONAL && along > 0.0 && along < 1.0) {
+        vec2 tap_offset = tyn_pixel_from_ndc(taps[1].xy, extent) - tyn_pixel_from_ndc(taps[0].xy, extent);
+        float tap_spacing = max(length(tap_offset), 1.0);
+        if (abs(taps[0].z - taps[1].z) > epipolar.bilateral_depth_threshold * tolerance_scale * tap_spacing &&
+            tyn_epipolar_contrast(values[0], values[1], TYN_GRAZING_CONTRAST)) {
+          along_edge = true;
+        }
       }
     } else if (on_surface[0] || on_surface[1]) {
       // A depth break between the two samples: the pixel has a sample of its surface on one side

@@ -8,7 +8,7 @@
 # pareto.json a plot per kind (pareto-64x36-256-directional, -local) beside the one over every
 # scene, each with its Pareto front and the profiles' picks (scripts.plot_pareto draws them).
 include("${CMAKE_CURRENT_LIST_DIR}/check_common.cmake")
-foreach(file results.csv results.json results.md choice.json pareto.json tradeoffs.md)
+foreach(file results.csv results.json results.md choice.json pareto.json tradeoffs.md tradeoffs-measurements.md)
   expect_nonempty_file("${DIR}/${file}" tyndall-bench)
 endforeach()
 file(READ "${DIR}/results.json" json)

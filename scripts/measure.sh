@@ -13,7 +13,8 @@ usage: scripts/measure.sh PART [build-dir]      (build-dir: default build; extre
 tradeoffs    tyndall-bench's default sweep (every sample scene but the analytic ones, the default
              grid of the epipolar and prefiltered techniques, against the Reference and the floor
              pass), then its plots (scripts/plot-pareto.py, matplotlib); copies the document and
-             plots into docs/, and for docs/TRADEOFFS.md its choice to
+             plots into docs/ and its tables into docs/measurements/tradeoffs-lavapipe.md (for
+             DOC=docs/TRADEOFFS-NAME.md: tradeoffs-name.md), and for docs/TRADEOFFS.md its choice to
              docs/data/tradeoffs-lavapipe-choice.json (the profile table's test reads it).
              SIZES (1280x720: where users run it), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default),
              BENCH_OUT (out/tradeoffs); FROM=RESULTS.json writes the document again from an earlier
@@ -75,26 +76,34 @@ USAGE
 
 # tradeoffs: tyndall-bench, its plots, and the document and plots copied into docs/.
 part_tradeoffs() {
-  local bench out doc python
+  local bench out doc python tables
   bench="$(program "$1" tyndall-bench)"
   python="$(plot_python)"
   out="${BENCH_OUT:-out/tradeoffs}"
   # Plots of an earlier run in the same folder (another size) would otherwise be copied to docs/.
   rm -f "$out"/pareto-*.svg "$out"/pareto-*.png
+  doc="${DOC:-docs/TRADEOFFS.md}"
+  # The document's tables: docs/TRADEOFFS[-X].md's go to docs/measurements/tradeoffs-lavapipe[x].md.
+  case "$(basename "$doc" .md)" in
+    TRADEOFFS) tables=tradeoffs-lavapipe.md ;;
+    TRADEOFFS-*) tables="tradeoffs-$(basename "$doc" .md | cut -d- -f2- | tr '[:upper:]' '[:lower:]').md" ;;
+    *) echo "DOC must be docs/TRADEOFFS.md or docs/TRADEOFFS-NAME.md (got $doc)" >&2; exit 1 ;;
+  esac
+  local link=(--measurements-link "measurements/$tables")
   if [ -n "${FROM:-}" ]; then
-    "$bench" --from "$FROM" --out "$out"
+    "$bench" --from "$FROM" --out "$out" "${link[@]}"
   else
     local args=(--sizes "${SIZES:-1280x720}" --shadow-maps "${SHADOW_MAPS:-2048}" --frames "${FRAMES:-20}" --out "$out")
     [ -n "${SCENES:-}" ] && args+=(--scenes "$SCENES")
-    "$bench" "${args[@]}"
+    "$bench" "${args[@]}" "${link[@]}"
     if [ -n "${KEEP_FROM:-}" ]; then
       [ -n "${SCENES:-}" ] || { echo "KEEP_FROM needs SCENES: the scenes to measure again" >&2; exit 1; }
       "$python" scripts/lib/merge_results.py "$out/results.json" "$KEEP_FROM" "$out/merged-results.json"
-      "$bench" --from "$out/merged-results.json" --out "$out"
+      "$bench" --from "$out/merged-results.json" --out "$out" "${link[@]}"
     fi
   fi
   "$python" scripts/plot-pareto.py "$out/pareto.json" "$out" >/dev/null
-  doc="${DOC:-docs/TRADEOFFS.md}"
+  cp "$out/tradeoffs-measurements.md" "docs/measurements/$tables"
   if [ "$doc" = docs/TRADEOFFS.md ]; then
     cp "$out/tradeoffs.md" "$doc"
     cp "$out/choice.json" docs/data/tradeoffs-lavapipe-choice.json
@@ -106,7 +115,7 @@ part_tradeoffs() {
       tail -n +2 "$out/tradeoffs.md"; } >"$doc"
   fi
   cp "$out"/pareto-*.svg "$out"/pareto-*.png docs/
-  echo "wrote $doc and docs/pareto-*.svg/.png from $out"
+  echo "wrote $doc, docs/measurements/$tables and docs/pareto-*.svg/.png from $out"
 }
 
 # The Reference render NAME.{exr,json} of scene FILE at W x H with a MAP² map over FRAMES frames, its

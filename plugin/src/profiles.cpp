@@ -16,7 +16,7 @@ namespace {
 // and be 10% more accurate where the row meets the same goals (kChallengerSpeedMargin,
 // kChallengerErrorMargin in samples/bench/report.h). Every profile runs the epipolar
 // technique: the prefiltered one meets the bars but is slower than every profile's speed goal in
-// that sweep (docs/TRADEOFFS.md "Every configuration"; docs/PREFILTERED.md "Cost on lavapipe").
+// that sweep (docs/measurements/tradeoffs-lavapipe.md "Every configuration"; docs/PREFILTERED.md "Cost on lavapipe").
 constexpr EpipolarSettings epipolarSettings(std::uint32_t slices, std::uint32_t samples, std::uint32_t initialStep,
                                             float intensityRefinement, std::uint32_t fixupSteps = 0) {
   EpipolarSettings s;

@@ -17,8 +17,8 @@ const char* const kUsage =
     "usage: tyndall-bench [--scenes NAME|FILE.json,...] [--sizes WxH,...] [--shadow-maps N,...]\n"
     "         [--grid default|full|quick|none] [--config TECHNIQUE[:KEY=VALUE,...]]... [--frames N] [--warm-up N]\n"
     "         [--orbit-frames N] [--orbit-degrees D] [--choose-at WxH/N] [--out DIR] [--sequential] [--validation]\n"
-    "         [--no-storage-back-buffer]\n"
-    "       tyndall-bench --from RESULTS.json [--choose-at WxH/N] [--out DIR]\n"
+    "         [--no-storage-back-buffer] [--measurements-link PATH]\n"
+    "       tyndall-bench --from RESULTS.json [--choose-at WxH/N] [--out DIR] [--measurements-link PATH]\n"
     "  --scenes: names in samples/scenes/ or scene files (default: the directional pillars,fence,forest,\n"
     "            window-room, the spot spot-lamp,stained-glass,spot-fan,spot-grille,spot-lattice,spot-foliage,\n"
     "            spot-street and the point point-lamp: a profile row is chosen over every scene of its kind of light)\n"
@@ -32,6 +32,8 @@ const char* const kUsage =
     "  --choose-at: the size and shadow map the profiles are chosen at (default: the first of each)\n"
     "  --out: the output directory (default out/bench): results.csv/.json/.md, pareto.json (the plots'\n"
     "         data: scripts/plot-pareto.py DIR/pareto.json DIR draws pareto-*.svg/.png), choice.json, tradeoffs.md\n"
+    "         (the choice) and tradeoffs-measurements.md (its tables)\n"
+    "  --measurements-link: the path tradeoffs.md links the tables at (default tradeoffs-measurements.md)\n"
     "  --validation: Vulkan validation on; any message fails the run\n"
     "  --no-storage-back-buffer: back buffers without STORAGE usage: Tyndall composites with a fragment pass\n"
     "         and the compute floor is not measured\n"
@@ -140,6 +142,8 @@ int main(int argc, char** argv) {
       out = value;
     } else if (arg == "--from") {
       from = value;
+    } else if (arg == "--measurements-link") {
+      context.measurementsLink = value;
     } else {
       return fail("unknown option " + arg + " (--help)");
     }

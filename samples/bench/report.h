@@ -125,6 +125,8 @@ struct ReportContext {
   double orbitDegreesPerFrame = 0.0;
   /// The configurations the profile table holds per kind of light (chooseProfiles' incumbents).
   std::map<LightClass, std::map<Profile, std::string>> incumbents = profileTableConfigurations();
+  /// Where tradeoffs.md links tradeoffs-measurements.md, relative to where tradeoffs.md ends up.
+  std::string measurementsLink = "tradeoffs-measurements.md";
 };
 
 /// The rows and context of an earlier run's results.json (writeReports writes it), so that the
@@ -135,8 +137,9 @@ bool readResults(const std::string& path, std::vector<Row>& rows, ReportContext&
 
 /// Writes into `directory`: results.csv, results.json, results.md, pareto.json (per group, and per
 /// kind of light when the rows have both, the plot pareto-WxH-N[-directional|-local] as data),
-/// choice.json (per profile and kind of light, the choice and the configuration it runs as) and
-/// tradeoffs.md, whose plots are pareto.json's files as .svg. The choice is made per kind of light
+/// choice.json (per profile and kind of light, the choice and the configuration it runs as),
+/// tradeoffs.md (the choice, the profiles as they run, the plots: pareto.json's files as .svg) and
+/// tradeoffs-measurements.md (per scene, per configuration and per measurement). The choice is made per kind of light
 /// present in the rows, over that kind's scenes. Files are written whole (temporary file, rename).
 bool writeReports(const std::vector<Row>& rows, const ReportContext& context, const std::string& directory,
                   std::string& error);

@@ -17,13 +17,13 @@
 
 #include <vulkan/vulkan.h>
 
-#include "tyndall/technique_stats.h"
-
 namespace tyndall {
 
 struct EpipolarSettings;     // tyndall/tuning.h
 struct PrefilteredSettings;  // tyndall/tuning.h
 struct ContextTuning;        // tyndall/tuning.h
+struct Stats;                // tyndall/stats.h, included at the end
+struct FrameTimings;         // tyndall/stats.h
 
 // ----------------------------------------------------------------------------------------------
 // Errors: no exception crosses the API, no bad input aborts.
@@ -81,9 +81,8 @@ enum class Profile : std::uint32_t {
   High,
   Balanced,
   Performance,
-  /// The most accurate of High, Balanced and Performance whose GPU time, measured by this
-  /// context's timestamps, fits `FrameDesc::autoBudgetMilliseconds` (docs/INTEGRATION.md
-  /// "Profiles"). `Stats::profileUsed` says which ran.
+  /// The most accurate of High, Balanced and Performance whose measured GPU time fits
+  /// `FrameDesc::autoBudgetMilliseconds` (docs/INTEGRATION.md "Profiles"); see Stats::profileUsed.
   Auto,
 };
 
@@ -96,9 +95,9 @@ enum class Technique : std::uint32_t {
 const char* to_string(Profile profile) noexcept;
 const char* to_string(Technique technique) noexcept;
 
-/// The resolution a technique computes L_in at (FrameDesc::resolution, else the technique's
-/// settings: EpipolarSettings/PrefilteredSettings::resolution, the profile table's). Below full, the composite upsamples it with a joint bilateral filter on the
-/// depth buffer (docs/INTEGRATION.md "Reduced resolution"); the Reference always runs at full.
+/// The resolution L_in is computed at (FrameDesc::resolution, else the profile's). Below full the
+/// composite upsamples it with a joint bilateral filter on depth (docs/INTEGRATION.md "Reduced
+/// resolution"); the Reference always runs at full.
 enum class ScatteringResolution : std::uint32_t {
   Full = 1,     ///< one L_in per pixel
   Half = 2,     ///< one per 2×2 pixels: a quarter of the per-pixel work and target memory
@@ -118,9 +117,8 @@ enum class DebugView : std::uint32_t {
 // Context creation
 // ----------------------------------------------------------------------------------------------
 
-/// IMPORTANT: the device must be Vulkan 1.3 (or 1.2 with VK_KHR_dynamic_rendering) and created
-/// with `dynamicRendering` and `dualSrcBlend` enabled; Tyndall cannot query which features the
-/// host enabled, so a device without them fails validation, not `create`.
+/// IMPORTANT: the device must be Vulkan 1.3 (or 1.2 with VK_KHR_dynamic_rendering) with
+/// `dynamicRendering` and `dualSrcBlend` enabled; Tyndall cannot query them (validation fails).
 struct ContextDesc {
   VkInstance instance = VK_NULL_HANDLE;                     ///< required
   VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;         ///< required
@@ -155,17 +153,16 @@ struct ImageRef {
   std::uint32_t arrayLayer = 0;       ///< the layer of `image` that `view` shows
   VkExtent2D extent{};
   VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  ///< current layout; never UNDEFINED for inputs
-  /// The usage the image was created with, where the host knows it (0: only each input's
-  /// documented minimum is assumed). A back buffer with STORAGE lets the composite run in compute.
-  VkImageUsageFlags usage = 0;
+  /// Its usage flags where the host knows them (0: each input's documented minimum is assumed).
+  VkImageUsageFlags usage = 0;  ///< a back buffer with STORAGE lets the composite run in compute
 
   [[nodiscard]] bool empty() const noexcept { return image == VK_NULL_HANDLE; }
 };
 
 struct CameraDesc {
   Mat4 view{};  ///< world → view; right-handed, looking down −Z (GLM's lookAt)
-  /// View → clip, clip depth in [0, 1]. Standard or reverse-Z, finite or infinite far: detected
-  /// from the matrix. Perspective only; exactly the matrix the depth buffer was rendered with.
+  /// View → clip, depth in [0, 1], perspective; reverse-Z and infinite far are detected. Exactly
+  /// the matrix the depth buffer was rendered with.
   Mat4 projection{};
   float infiniteFarSkyDistance = 1000.0f;  ///< scene units sky pixels integrate to with an infinite far, > 0
 };
@@ -181,8 +178,7 @@ struct LightDesc {
   Float3 direction{0.0f, -1.0f, 0.0f};  ///< the direction light travels (light → scene); any length
   Float3 position{0.0f, 0.0f, 0.0f};    ///< scene units (spot, point)
   Float3 color{1.0f, 1.0f, 1.0f};       ///< linear RGB, each ≥ 0
-  /// Directional: irradiance (per scene unit²); spot/point: radiant intensity I, attenuated as
-  /// I / d² · exp(−σ_t d). ≥ 0, default 1.
+  /// ≥ 0. Directional: irradiance; spot/point: radiant intensity I, reaching d as I / d² · exp(−σ_t d).
   float intensity = 1.0f;
   float innerConeRadians = 0.5f;  ///< spot: half-angle of full intensity, 0 ≤ inner ≤ outer
   float outerConeRadians = 0.6f;  ///< spot: half-angle where intensity reaches 0, < π/2
@@ -234,84 +230,12 @@ struct FrameDesc {
 
   Profile profile = Profile::Balanced;
   float autoBudgetMilliseconds = 4.0f;  ///< Profile::Auto's GPU-time budget (FrameTimings' total), > 0
-  /// Optional: the resolution of L_in instead of the profile's (or the settings'); the Reference
-  /// always runs at full resolution.
-  std::optional<ScatteringResolution> resolution;
+  std::optional<ScatteringResolution> resolution;  ///< optional: instead of the profile's
   /// Optional overrides for tools and validation (tyndall/tuning.h), read during `record` only:
   /// the technique instead of the profile's (None: the profile's), and its parameters.
   Technique technique = Technique::None;
   const EpipolarSettings* epipolar = nullptr;
   const PrefilteredSettings* prefiltered = nullptr;
-};
-
-// ----------------------------------------------------------------------------------------------
-// Statistics: what ran and why, as data; `techniqueNote` summarises it for people.
-// ----------------------------------------------------------------------------------------------
-
-struct PassTiming {
-  std::string name;
-  double milliseconds = 0.0;
-};
-
-/// GPU timings of one earlier frame, read from timestamp queries without waiting.
-struct FrameTimings {
-  std::uint64_t frameIndex = 0;    ///< the `Stats::frameIndex` it was recorded as
-  std::vector<PassTiming> passes;  ///< in recording order
-  double totalMilliseconds = 0.0;  ///< first pass start to last pass end
-};
-
-enum class CompositePath : std::uint32_t { None, Fragment, Compute };
-const char* to_string(CompositePath path) noexcept;  ///< "none", "fragment", "compute"
-
-/// Why the technique that ran is not the one the profile (or FrameDesc::technique) asked for.
-/// Each is a design decision, documented in docs/INTEGRATION.md "Fallbacks".
-enum class TechniqueChange : std::uint32_t {
-  None,                              ///< the requested technique ran
-  NoExtinction,                      ///< σ_t = 0: nothing recorded, the back buffer left as it is
-  NothingScatters,                   ///< σ_s = 0 or the light off: L_in cleared, the back buffer attenuated
-  PrefilteredNeedsDirectionalLight,  ///< prefiltered asked for a spot or point light: epipolar ran
-  PrefilteredHasNoLightColor,        ///< prefiltered asked with a light-colour texture: epipolar ran
-  EpipolarNeeds2x2,                  ///< epipolar asked for an output under 2×2: the Reference ran
-};
-const char* to_string(TechniqueChange change) noexcept;
-
-/// Profile::Auto's estimate of each profile's time: the median of its last measured frames under
-/// Auto, in milliseconds; empty while unmeasured.
-struct AutoEstimates {
-  std::optional<double> high, balanced, performance;
-};
-
-struct Stats {
-  std::uint64_t frameIndex = 0;  ///< frames recorded so far by this context
-  Profile requestedProfile = Profile::Balanced;
-  Profile profileUsed = Profile::Balanced;  ///< the requested one, or the one Auto chose
-  /// What the profile table (or FrameDesc::technique) asked for, and what ran. They differ only
-  /// with a `techniqueChange`; `technique` is None when nothing was computed.
-  Technique requestedTechnique = Technique::None;
-  Technique technique = Technique::None;
-  TechniqueChange techniqueChange = TechniqueChange::None;
-  bool techniqueSetByFrame = false;  ///< FrameDesc::technique chose it, not the profile table
-  std::optional<EpipolarStats> epipolar;        ///< when the epipolar technique ran this frame
-  std::optional<PrefilteredStats> prefiltered;  ///< when the prefiltered technique ran this frame
-  std::optional<EpipolarCounts> epipolarCounts; ///< once an epipolar frame's counts were read back
-  /// A CPU driver (lavapipe) ends a shader invocation's loops after 65,535 iterations; a point
-  /// light's texel walk over maps above 4096² can exceed that and come out too dark.
-  bool pointLightWalkOverCpuLoopLimit = false;
-  bool debugViewDrawn = false;                  ///< false: debugOutput got the dimmed L_in alone
-  std::string techniqueNote;                    ///< the above in one line for people; not for parsing
-  std::vector<std::string> passesRecorded;      ///< the last `record`'s passes, in order
-  /// How the last frame wrote the back buffer: a compute pass (the back buffer has STORAGE usage
-  /// and a format compute can write) or a full-screen fragment pass; None when it was left alone.
-  CompositePath composite = CompositePath::None;
-  /// The resolution L_in was computed at in the last frame (the composite upsampled it below Full).
-  ScatteringResolution scatteringResolution = ScatteringResolution::Full;
-  std::uint32_t dispatches = 0;  ///< compute dispatches (direct and indirect) the last `record` recorded
-  std::uint32_t barriers = 0;    ///< pipeline barriers the last `record` recorded
-  FrameTimings lastTimings;                     ///< most recent frame whose timestamps were available
-  bool timingsValid = false;                    ///< false until `lastTimings` holds one
-  bool timestampsSupported = false;
-  std::uint64_t deviceMemoryBytes = 0;  ///< held after the last `record` (targets, technique data)
-  AutoEstimates autoEstimateMilliseconds;
 };
 
 // ----------------------------------------------------------------------------------------------
@@ -328,20 +252,18 @@ class Context {
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
-  /// Rebuilds only the size-dependent resources. IMPORTANT: as for destruction, the GPU no
-  /// longer uses anything recorded by this context. A failed resize keeps neither size: `record`
-  /// fails until a later `resize` succeeds.
+  /// Rebuilds only the size-dependent resources. IMPORTANT: as for destruction, the GPU no longer
+  /// uses this context's work. A failed resize keeps neither size: `record` fails until one succeeds.
   Outcome resize(VkExtent2D outputExtent);
 
-  /// Compiles every pipeline not compiled yet (ContextTuning::pipelineCreation); nothing to do
-  /// by default. Call it outside frames, e.g. behind a loading screen.
+  /// Compiles the pipelines not compiled yet (ContextTuning::pipelineCreation; none by default),
+  /// e.g. behind a loading screen.
   Outcome warmUp();
 
   /// Records this frame's passes into `commandBuffer` (outside a render pass, on a compute and
   /// graphics queue). An invalid frame records nothing and returns the reason.
   /// IMPORTANT: when record is called for frame n, the GPU has finished frame n − maxFramesInFlight
-  /// (the host waited on that frame's fence), as in any frames-in-flight loop.
-  /// A lost device shows in the timestamps record reads: from then on every record fails with
+  /// (the host waited on its fence). After a lost device every record fails with
   /// VK_ERROR_DEVICE_LOST and records nothing (destroy the context with the device).
   Outcome record(VkCommandBuffer commandBuffer, const FrameDesc& frame);
 
@@ -361,3 +283,5 @@ class Context {
 };
 
 }  // namespace tyndall
+
+#include "tyndall/stats.h"  // what each frame did: Context::stats()

@@ -1,0 +1,146 @@
+// What a frame did, as data (Context::stats()): the profile and technique that ran and why, each
+// technique's decisions, GPU timings of an earlier frame, dispatch and memory counts.
+// `techniqueNote` summarises it for people. Included at the end of tyndall/tyndall.h.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tyndall/tyndall.h"
+
+namespace tyndall {
+
+// ----------------------------------------------------------------------------------------------
+// Per technique: what it decided (Stats::epipolar, Stats::prefiltered, Stats::epipolarCounts)
+// ----------------------------------------------------------------------------------------------
+
+/// How the epipolar technique marched its samples.
+enum class EpipolarMarch : std::uint32_t {
+  MinMaxTree,          ///< along each slice's 1D min/max tree (yusov2013)
+  CellsTreeOff,        ///< cell by cell: EpipolarSettings::minMaxTree is off
+  CellsMapTooLarge,    ///< cell by cell: the shadow map is larger than the tree supports (4096²)
+  PointLightBlockWalk, ///< a point light: the texel walk across blocks of its six maps
+};
+
+struct EpipolarStats {
+  std::uint32_t slices = 0;           ///< the settings that ran (profile table or FrameDesc::epipolar)
+  std::uint32_t samplesPerSlice = 0;
+  /// Last / first sample spacing along a slice that ran: the settings' epipoleDensity, or the
+  /// light's when that is 0 (1 for a directional light, 16 for a spot or point light).
+  float epipoleDensity = 1.0f;
+  EpipolarMarch march = EpipolarMarch::MinMaxTree;
+  /// Fraction of the screen border the slices' end points cover: 1 for the whole border, less
+  /// where only a spot cone's wedge or an off-screen epipole's wedge can hold shafts.
+  float sliceBorderFraction = 1.0f;
+  bool slicesFitSpotCone = false;        ///< the wedge was narrowed to the spot cone
+  bool slicesFitOffScreenEpipole = false;///< the wedge was narrowed to what an off-screen epipole sees
+  /// With a light-colour texture, lit parts of a slice's line are integrated in chunks of this many
+  /// cells, each times its mean colour from the slice's prefix sums; 0 without (or a point light).
+  std::uint32_t coloredChunkCells = 0;
+};
+
+/// Counts read back from an earlier frame of the epipolar technique (the frame of `lastTimings`).
+struct EpipolarCounts {
+  std::uint64_t marchedSamples = 0;   ///< ray-marched (initial step plus refinements)
+  std::uint64_t shadowedSamples = 0;  ///< found wholly in shadow by the min/max tree: zero, not marched
+  double fixedUpPixelFraction = 0.0;  ///< of the output's pixels, ray-marched by the fix-up pass
+};
+
+enum class Rectification : std::uint32_t {
+  Projective,  ///< klehm2014 §4.2: one matrix
+  NonLinear,   ///< peters2017 §5.1.1: (r, φ, θ), valid for every view
+};
+
+/// Why the prefiltered technique's rectification is the one that ran.
+enum class RectificationChoice : std::uint32_t {
+  Requested,             ///< the settings asked for it
+  Automatic,             ///< chosen by the projective matrix's texel stretch (≤ 2: projective)
+  ProjectiveImpossible,  ///< projective asked, but the light axis is in the frustum: non-linear ran
+};
+
+struct PrefilteredStats {
+  Rectification rectification = Rectification::NonLinear;
+  RectificationChoice choice = RectificationChoice::Requested;
+  double projectiveTexelStretch = 0.0;  ///< ∞ when no projective matrix exists for the view
+  std::uint32_t prefixSumSets = 1;      ///< 1 (grey extinction) to 3 (one per distinct channel)
+  bool rowDepthBounds = false;          ///< rays the rows' depth bounds decide skip the reconstruction
+  std::uint32_t segments = 0;           ///< reconstructions per pixel with segmented reconstruction; 0 off
+  bool trimmedSegments = false;
+  std::uint32_t texelWalkSteps = 0;     ///< 0: no texel walk
+  std::uint32_t shortRayColumns = 0;    ///< rays ending within these columns are ray-marched; 0 off
+  bool epipoleBlockMarched = false;     ///< the epipole's block was on screen and ray-marched
+};
+
+// ----------------------------------------------------------------------------------------------
+// Per frame
+// ----------------------------------------------------------------------------------------------
+
+struct PassTiming {
+  std::string name;
+  double milliseconds = 0.0;
+};
+
+/// GPU timings of one earlier frame, read from timestamp queries without waiting.
+struct FrameTimings {
+  std::uint64_t frameIndex = 0;    ///< the `Stats::frameIndex` it was recorded as
+  std::vector<PassTiming> passes;  ///< in recording order
+  double totalMilliseconds = 0.0;  ///< first pass start to last pass end
+};
+
+enum class CompositePath : std::uint32_t { None, Fragment, Compute };
+const char* to_string(CompositePath path) noexcept;  ///< "none", "fragment", "compute"
+
+/// Why the technique that ran is not the one the profile (or FrameDesc::technique) asked for.
+/// Each is a design decision, documented in docs/INTEGRATION.md "Fallbacks".
+enum class TechniqueChange : std::uint32_t {
+  None,                              ///< the requested technique ran
+  NoExtinction,                      ///< σ_t = 0: nothing recorded, the back buffer left as it is
+  NothingScatters,                   ///< σ_s = 0 or the light off: L_in cleared, the back buffer attenuated
+  PrefilteredNeedsDirectionalLight,  ///< prefiltered asked for a spot or point light: epipolar ran
+  PrefilteredHasNoLightColor,        ///< prefiltered asked with a light-colour texture: epipolar ran
+  EpipolarNeeds2x2,                  ///< epipolar asked for an output under 2×2: the Reference ran
+};
+const char* to_string(TechniqueChange change) noexcept;
+
+/// Profile::Auto's estimate of each profile's time: the median of its last measured frames under
+/// Auto, in milliseconds; empty while unmeasured.
+struct AutoEstimates {
+  std::optional<double> high, balanced, performance;
+};
+
+struct Stats {
+  std::uint64_t frameIndex = 0;  ///< frames recorded so far by this context
+  Profile requestedProfile = Profile::Balanced;
+  Profile profileUsed = Profile::Balanced;  ///< the requested one, or the one Auto chose
+  /// What the profile table (or FrameDesc::technique) asked for, and what ran. They differ only
+  /// with a `techniqueChange`; `technique` is None when nothing was computed.
+  Technique requestedTechnique = Technique::None;
+  Technique technique = Technique::None;
+  TechniqueChange techniqueChange = TechniqueChange::None;
+  bool techniqueSetByFrame = false;  ///< FrameDesc::technique chose it, not the profile table
+  std::optional<EpipolarStats> epipolar;        ///< when the epipolar technique ran this frame
+  std::optional<PrefilteredStats> prefiltered;  ///< when the prefiltered technique ran this frame
+  std::optional<EpipolarCounts> epipolarCounts; ///< once an epipolar frame's counts were read back
+  /// A CPU driver (lavapipe) ends a shader invocation's loops after 65,535 iterations; a point
+  /// light's texel walk over maps above 4096² can exceed that and come out too dark.
+  bool pointLightWalkOverCpuLoopLimit = false;
+  bool debugViewDrawn = false;                  ///< false: debugOutput got the dimmed L_in alone
+  std::string techniqueNote;                    ///< the above in one line for people; not for parsing
+  std::vector<std::string> passesRecorded;      ///< the last `record`'s passes, in order
+  /// How the last frame wrote the back buffer: a compute pass (the back buffer has STORAGE usage
+  /// and a format compute can write) or a full-screen fragment pass; None when it was left alone.
+  CompositePath composite = CompositePath::None;
+  /// The resolution L_in was computed at in the last frame (the composite upsampled it below Full).
+  ScatteringResolution scatteringResolution = ScatteringResolution::Full;
+  std::uint32_t dispatches = 0;  ///< compute dispatches (direct and indirect) the last `record` recorded
+  std::uint32_t barriers = 0;    ///< pipeline barriers the last `record` recorded
+  FrameTimings lastTimings;                     ///< most recent frame whose timestamps were available
+  bool timingsValid = false;                    ///< false until `lastTimings` holds one
+  bool timestampsSupported = false;
+  std::uint64_t deviceMemoryBytes = 0;  ///< held after the last `record` (targets, technique data)
+  AutoEstimates autoEstimateMilliseconds;
+};
+
+}  // namespace tyndall

@@ -1,9 +1,13 @@
 // Triangulation of scene objects into world-space triangle meshes for the stub host's raster passes.
 // Front faces are counter-clockwise seen from outside, normals point outward.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <limits>
 #include <numbers>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -149,6 +153,7 @@ struct AccessorView {
   std::size_t stride = 0;
   std::size_t count = 0;
   int componentType = 0;
+  bool normalized = false;
 };
 
 bool accessorView(const tinygltf::Model& model, int index, int expectedType, AccessorView& view,
@@ -177,22 +182,46 @@ bool accessorView(const tinygltf::Model& model, int index, int expectedType, Acc
     error = name + " reads past the end of its buffer";
     return false;
   }
-  view = {buffer->data.data() + begin, static_cast<std::size_t>(stride), accessor->count, accessor->componentType};
+  view = {buffer->data.data() + begin, static_cast<std::size_t>(stride), accessor->count, accessor->componentType,
+          accessor->normalized};
   return true;
 }
 
-bool readVec3Floats(const tinygltf::Model& model, int index, std::vector<glm::dvec3>& out, std::string& error) {
+// One component of a VEC3 element (glTF data need not be aligned). Integer components are
+// KHR_mesh_quantization's: normalised ones map to [0, 1] or [−1, 1] as the glTF specification's
+// decoding says, the others are taken as they are (the node transform scales them).
+template <typename T>
+double component(const unsigned char* at, bool normalized) {
+  T value;
+  std::memcpy(&value, at, sizeof(value));
+  if constexpr (std::is_floating_point_v<T>) {
+    return static_cast<double>(value);
+  } else {
+    if (!normalized) return static_cast<double>(value);
+    constexpr double kMax = static_cast<double>(std::numeric_limits<T>::max());
+    return std::is_signed_v<T> ? std::max(static_cast<double>(value) / kMax, -1.0) : static_cast<double>(value) / kMax;
+  }
+}
+
+bool readVec3(const tinygltf::Model& model, int index, std::vector<glm::dvec3>& out, std::string& error) {
   AccessorView view;
   if (!accessorView(model, index, TINYGLTF_TYPE_VEC3, view, error)) return false;
-  if (view.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) {
-    error = "accessor " + std::to_string(index) + " must hold floats";
-    return false;
+  double (*read)(const unsigned char*, bool) = nullptr;
+  std::size_t size = 0;
+  switch (view.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: read = component<float>; size = 4; break;
+    case TINYGLTF_COMPONENT_TYPE_BYTE: read = component<std::int8_t>; size = 1; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: read = component<std::uint8_t>; size = 1; break;
+    case TINYGLTF_COMPONENT_TYPE_SHORT: read = component<std::int16_t>; size = 2; break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: read = component<std::uint16_t>; size = 2; break;
+    default:
+      error = "accessor " + std::to_string(index) + " must hold floats, bytes or shorts";
+      return false;
   }
   out.resize(view.count);
   for (std::size_t i = 0; i < view.count; ++i) {
-    float xyz[3];
-    std::memcpy(xyz, view.data + i * view.stride, sizeof(xyz));  // glTF data need not be aligned
-    out[i] = glm::dvec3(xyz[0], xyz[1], xyz[2]);
+    const unsigned char* at = view.data + i * view.stride;
+    out[i] = glm::dvec3(read(at, view.normalized), read(at + size, view.normalized), read(at + 2 * size, view.normalized));
   }
   return true;
 }
@@ -260,17 +289,18 @@ bool appendPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& pr
   if (position == primitive.attributes.end()) return true;  // nothing to draw
   std::vector<glm::dvec3> positions, normals;
   std::vector<std::uint32_t> indices;
-  if (!readVec3Floats(model, position->second, positions, error)) return false;
+  if (!readVec3(model, position->second, positions, error)) return false;
   const auto normal = primitive.attributes.find("NORMAL");
-  if (normal != primitive.attributes.end() && !readVec3Floats(model, normal->second, normals, error)) return false;
+  if (normal != primitive.attributes.end() && !readVec3(model, normal->second, normals, error)) return false;
   if (!readIndices(model, primitive, positions.size(), indices, error)) return false;
 
   const glm::dmat3 linear(world);
   const double determinant = glm::determinant(linear);
-  if (!(std::abs(determinant) > 0.0)) {
-    error = "a node transform is singular";
+  if (!std::isfinite(determinant)) {
+    error = "a node transform is not finite";
     return false;
   }
+  if (determinant == 0.0) return true;  // a zero scale is how glTF files hide a node: nothing to draw
   const glm::dmat3 normalMatrix = glm::transpose(glm::inverse(linear));
   const bool mirrored = determinant < 0.0;  // a mirroring transform flips the winding
   const bool smooth = normals.size() == positions.size();
@@ -333,8 +363,16 @@ std::vector<int> gltfRootNodes(const tinygltf::Model& model) {
   return roots;
 }
 
+// The stub host shades with the scene's albedo, never a texture: images are not decoded, so that a
+// file whose images are missing or in a format stb cannot read (KTX2, WebP) loads all the same.
+bool skipImage(tinygltf::Image* /*image*/, int /*index*/, std::string* /*error*/, std::string* /*warning*/,
+               int /*width*/, int /*height*/, const unsigned char* /*bytes*/, int /*size*/, void* /*user*/) {
+  return true;
+}
+
 bool loadGltfModel(const std::filesystem::path& path, tinygltf::Model& model, std::string& error) {
   tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(skipImage, nullptr);
   std::string loaderError, warning;
   const bool binary = path.extension() == ".glb";
   const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &loaderError, &warning, path.string())

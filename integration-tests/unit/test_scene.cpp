@@ -611,6 +611,65 @@ TEST(Triangulation, GltfTriangleStripBecomesConsistentlyWoundTriangles) {
   for (const Triangle& t : tris) expectNear(t.geometricNormal(), {0, 0, -1}, 1e-6);
 }
 
+TEST(Triangulation, GltfQuantizedPositionsAndNormalsAreDecoded) {
+  // KHR_mesh_quantization: positions as unnormalised unsigned shorts (the node scales them by 1/2)
+  // and normals as normalised signed bytes (127 is 1.0, −128 clamps to −1.0).
+  std::vector<unsigned char> bytes;
+  auto put16 = [&](std::uint16_t v) {
+    bytes.push_back(static_cast<unsigned char>(v & 0xffu));
+    bytes.push_back(static_cast<unsigned char>(v >> 8));
+  };
+  for (int v : {0, 0, 0, 2, 0, 0, 0, 2, 0}) put16(static_cast<std::uint16_t>(v));  // 18 bytes
+  bytes.insert(bytes.end(), 2, 0);                                 // align the normals to 4 bytes
+  for (int i = 0; i < 3; ++i) {
+    for (int v : {0, 0, 127, 0}) bytes.push_back(static_cast<unsigned char>(static_cast<std::int8_t>(v)));  // stride 4
+  }
+  const TriangleMesh mesh = triangulateGltf(
+      R"("extensionsUsed": ["KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],
+         "nodes": [{"mesh": 0, "scale": [0.5, 0.5, 0.5]}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}])",
+      R"("bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 18}, {"buffer": 0, "byteOffset": 20, "byteLength": 12, "byteStride": 4}],
+         "accessors": [{"bufferView": 0, "componentType": 5123, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [2, 2, 0]},
+                       {"bufferView": 1, "componentType": 5120, "normalized": true, "count": 3, "type": "VEC3"}])",
+      bytes);
+  const std::vector<Triangle> tris = triangles(mesh);
+  ASSERT_EQ(tris.size(), 1u);
+  expectNear(tris[0].p[0], {0, 0, 0}, 1e-6);
+  expectNear(tris[0].p[1], {1, 0, 0}, 1e-6);
+  expectNear(tris[0].p[2], {0, 1, 0}, 1e-6);
+  for (int k = 0; k < 3; ++k) expectNear(tris[0].n[k], {0, 0, 1}, 1e-6);
+}
+
+TEST(Triangulation, GltfZeroScaleNodeIsHiddenNotAnError) {
+  // Two nodes share the triangle; the one scaled to zero (how files hide a node) draws nothing.
+  const std::vector<unsigned char> bytes = bytesOf({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const TriangleMesh mesh = triangulateGltf(
+      R"("nodes": [{"mesh": 0, "scale": [0, 0, 0]}, {"mesh": 0, "translation": [0, 0, 3]}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}])",
+      R"("bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}])",
+      bytes);
+  const std::vector<Triangle> tris = triangles(mesh);
+  ASSERT_EQ(tris.size(), 1u);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(tris[0].p[k].z, 3.0, 1e-6);
+}
+
+TEST(Triangulation, GltfImagesAreNotDecoded) {
+  // A texture whose image no decoder reads (bytes that are not a PNG) and one whose file is
+  // missing: the stub host never samples textures, so the mesh loads.
+  const std::vector<unsigned char> bytes = bytesOf({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  const TriangleMesh mesh = triangulateGltf(
+      R"("nodes": [{"mesh": 0}],
+         "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+         "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+         "textures": [{"source": 0}, {"source": 1}],
+         "images": [{"uri": "data:image/png;base64,bm90IGEgcG5n"}, {"uri": "no-such-image.ktx2"}])",
+      R"("bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+         "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}])",
+      bytes);
+  EXPECT_EQ(triangles(mesh).size(), 1u);
+}
+
 TEST(Triangulation, MissingGltfFileFailsWithItsName) {
   Object object;
   object.type = ObjectType::Gltf;

@@ -41,11 +41,14 @@ struct LightingParams {
   vec4 sky;             // rgb: radiance of sky pixels; a: depth clear value (marks sky pixels)
   vec4 ambient;         // rgb: ambient irradiance
   ivec4 mode;           // x: light type, y: shadow map count, z: width, w: height
+  // x: 1 for the second and later lights of a scene, drawn with additive blending over the first:
+  // they add their direct light only (no sky, no ambient). 0 for the first light.
+  ivec4 additive;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(MeshPush) == 64);
-static_assert(sizeof(LightingParams) == 7 * 64 + 9 * 16);
+static_assert(sizeof(LightingParams) == 7 * 64 + 10 * 16);
 }  // namespace tyndall::host::gpu
 #undef HOST_CONST
 #endif

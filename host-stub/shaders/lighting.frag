@@ -1,7 +1,9 @@
 // Lighting pass: reads the G-buffer, writes the HDR back buffer (scene-linear radiance).
 //   out = albedo · (ambient + E · max(0, n·l) · visibility)
 // with E = colour · intensity (directional) or I / d² (· cone falloff for spots). No medium
-// attenuation here: that is the post-process's business.
+// attenuation here: that is the post-process's business. A scene with several lights runs this
+// once per light; the later runs (params.additive.x = 1) are blended additively and add only
+// albedo · E · max(0, n·l) · visibility.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #include "host_shared.glsl"
@@ -99,8 +101,9 @@ vec3 host_light_color(vec3 world) {
 void main() {
   const ivec2 px = ivec2(gl_FragCoord.xy);
   const float depth = texelFetch(gDepth, px, 0).r;
+  const bool additive = params.additive.x != 0;
   if (depth == params.sky.a) {  // nothing drawn: the depth still holds its clear value
-    outColor = vec4(params.sky.rgb, 1.0);
+    outColor = additive ? vec4(0.0) : vec4(params.sky.rgb, 1.0);
     return;
   }
   const vec3 albedo = texelFetch(gAlbedo, px, 0).rgb;
@@ -128,7 +131,7 @@ void main() {
     }
   }
 
-  vec3 light = params.ambient.rgb;
+  vec3 light = additive ? vec3(0.0) : params.ambient.rgb;
   const float nDotL = dot(n, toLight);
   if (nDotL > 0.0 && any(greaterThan(irradiance, vec3(0.0)))) {
     light += irradiance * host_light_color(world) * nDotL * host_shadow(world, n, toLight);

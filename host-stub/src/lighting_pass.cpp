@@ -17,8 +17,10 @@ constexpr auto kShadowCount = static_cast<std::uint32_t>(gpu::kHostMaxShadowMaps
 }  // namespace
 
 bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::uint32_t slotCount,
-                          std::string& error) {
+                          std::uint32_t lightCount, std::string& error) {
   device_ = gpu.device;
+  lightCount_ = lightCount;
+  const std::uint32_t setCount = slotCount * lightCount;
 
   // The G-buffer is read with texelFetch; the sampler only has to exist.
   VkSamplerCreateInfo pointInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
@@ -76,11 +78,11 @@ bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::
   setLayout_ = vk::UniqueDescriptorSetLayout(device_, setLayout);
 
   const VkDescriptorPoolSize sizes[] = {
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, slotCount},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, slotCount * (4 + kShadowCount)},
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, setCount},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, setCount * (4 + kShadowCount)},
   };
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = slotCount;
+  poolInfo.maxSets = setCount;
   poolInfo.poolSizeCount = 2;
   poolInfo.pPoolSizes = sizes;
   VkDescriptorPool pool = VK_NULL_HANDLE;
@@ -88,12 +90,12 @@ bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::
     return false;
   pool_ = vk::UniqueDescriptorPool(device_, pool);
 
-  const std::vector<VkDescriptorSetLayout> layouts(slotCount, setLayout);
+  const std::vector<VkDescriptorSetLayout> layouts(setCount, setLayout);
   VkDescriptorSetAllocateInfo allocInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   allocInfo.descriptorPool = pool;
-  allocInfo.descriptorSetCount = slotCount;
+  allocInfo.descriptorSetCount = setCount;
   allocInfo.pSetLayouts = layouts.data();
-  sets_.resize(slotCount);
+  sets_.resize(setCount);
   if (!vk::check(vkAllocateDescriptorSets(device_, &allocInfo, sets_.data()), "vkAllocateDescriptorSets", error))
     return false;
 
@@ -110,10 +112,14 @@ bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::
   desc.vertexShader = shaders::fullscreen_vert();
   desc.fragmentShader = shaders::lighting_frag();
   desc.colorFormats = {colorFormat};
-  return vk::createGraphicsPipeline(device_, desc, pipeline_, error);
+  if (!vk::createGraphicsPipeline(device_, desc, pipeline_, error)) return false;
+  if (lightCount < 2) return true;
+  desc.additiveBlend = true;
+  return vk::createGraphicsPipeline(device_, desc, additivePipeline_, error);
 }
 
-void LightingPass::bindSlot(std::uint32_t slot, const SlotInputs& inputs) {
+void LightingPass::bindSlot(std::uint32_t slot, std::uint32_t light, const SlotInputs& inputs) {
+  const VkDescriptorSet set = sets_[slot * lightCount_ + light];
   const VkDescriptorBufferInfo params{inputs.params, 0, sizeof(gpu::LightingParams)};
   auto gbuffer = [this](VkImageView view) {
     return VkDescriptorImageInfo{pointSampler_.get(), view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
@@ -134,7 +140,7 @@ void LightingPass::bindSlot(std::uint32_t slot, const SlotInputs& inputs) {
   VkWriteDescriptorSet writes[6]{};
   for (VkWriteDescriptorSet& write : writes) {
     write.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
-    write.dstSet = sets_[slot];
+    write.dstSet = set;
     write.descriptorCount = 1;
     write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   }
@@ -169,9 +175,14 @@ void LightingPass::record(VkCommandBuffer cmd, std::uint32_t slot, const vk::Ima
   rendering.pColorAttachments = &color;
   vkCmdBeginRendering(cmd, &rendering);
   vk::setViewport(cmd, target.extent());
-  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline_.get());
-  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &sets_[slot], 0, nullptr);
-  vkCmdDraw(cmd, 3, 1, 0, 0);
+  // All lights in one rendering: blending follows primitive order within it, so the lights need
+  // no barrier between them.
+  for (std::uint32_t light = 0; light < lightCount_; ++light) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, light == 0 ? pipeline_.get() : additivePipeline_.get());
+    const VkDescriptorSet set = sets_[slot * lightCount_ + light];
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_.get(), 0, 1, &set, 0, nullptr);
+    vkCmdDraw(cmd, 3, 1, 0, 0);
+  }
   vkCmdEndRendering(cmd);
 }
 

@@ -91,7 +91,7 @@ struct ShadowViews {
 };
 
 /// Fits the light's shadow frusta to the casters and the visible volume (see renderer.h).
-ShadowViews fitShadowViews(const Scene& scene, const CameraSetup& camera,
+ShadowViews fitShadowViews(const Light& light, const CameraSetup& camera,
                            const SceneGeometry& geometry, std::uint32_t mapSize);
 
 /// Depth-only rasterisation of the whole scene into one shadow map (depth clamp on).
@@ -121,10 +121,11 @@ class GBufferPass {
   vk::UniquePipeline pipeline_;
 };
 
-/// Full-screen deferred lighting into the back buffer; one descriptor set per frame slot.
+/// Full-screen deferred lighting into the back buffer, one full-screen draw per light; one
+/// descriptor set per frame slot and light.
 class LightingPass {
  public:
-  struct SlotInputs {
+  struct SlotInputs {  // of one light in one slot
     VkBuffer params = VK_NULL_HANDLE;  // gpu::LightingParams
     VkImageView depth = VK_NULL_HANDLE;
     VkImageView albedo = VK_NULL_HANDLE;
@@ -134,10 +135,12 @@ class LightingPass {
   };
 
   bool create(const vk::GpuContext& gpu, VkFormat colorFormat, std::uint32_t slotCount,
-              std::string& error);
-  /// Points slot `slot`'s descriptor set at its images (after creation and after a resize).
-  void bindSlot(std::uint32_t slot, const SlotInputs& inputs);
+              std::uint32_t lightCount, std::string& error);
+  /// Points the descriptor set of light `light` in slot `slot` at its images (after creation and
+  /// after a resize).
+  void bindSlot(std::uint32_t slot, std::uint32_t light, const SlotInputs& inputs);
   /// G-buffer and shadow maps in SHADER_READ_ONLY_OPTIMAL, `target` in COLOR_ATTACHMENT_OPTIMAL.
+  /// The first light overwrites `target`, the others are blended onto it additively.
   void record(VkCommandBuffer cmd, std::uint32_t slot, const vk::Image& target) const;
 
  private:
@@ -147,9 +150,11 @@ class LightingPass {
   vk::UniqueSampler linearSampler_;
   vk::UniqueDescriptorSetLayout setLayout_;
   vk::UniqueDescriptorPool pool_;
-  std::vector<VkDescriptorSet> sets_;  // freed with the pool
+  std::vector<VkDescriptorSet> sets_;  // slot · lightCount_ + light; freed with the pool
+  std::uint32_t lightCount_ = 1;
   vk::UniquePipelineLayout layout_;
-  vk::UniquePipeline pipeline_;
+  vk::UniquePipeline pipeline_;          // the first light
+  vk::UniquePipeline additivePipeline_;  // the others; only with more than one light
 };
 
 }  // namespace tyndall::host::detail

@@ -2,7 +2,8 @@
 // passes, the post-process stack and the readback.
 //
 // Per frame, in one command buffer:
-//   shadow map(s) → G-buffer → lighting (into the back buffer) → post-process effects
+//   shadow map(s) of every light → G-buffer → lighting, one draw per light (into the back
+//   buffer) → post-process effects
 // Every image of a slot starts the frame in UNDEFINED (its content is regenerated), so a frame
 // never depends on what a previous frame or an effect left in it.
 #include <cmath>
@@ -25,12 +26,17 @@ constexpr glm::vec3 kSkyRadiance{0.02f, 0.03f, 0.05f};
 constexpr glm::vec3 kAmbient{0.02f, 0.03f, 0.05f};
 constexpr std::uint32_t kMaxFramesInFlight = 16;
 
+// What a frame slot holds for one light.
+struct LightTargets {
+  vk::Buffer params;  // gpu::LightingParams, host-visible
+  std::vector<vk::Image> shadowMaps;
+};
+
 struct FrameSlot {
   VkCommandBuffer cmd = VK_NULL_HANDLE;  // freed with the pool
   vk::UniqueFence fence;
   bool pending = false;  // submitted and not yet waited for
-  vk::Buffer params;     // gpu::LightingParams, host-visible
-  std::vector<vk::Image> shadowMaps;
+  std::vector<LightTargets> lights;  // as Renderer::Impl::lights
   // Size-dependent.
   vk::Image depth;
   vk::Image albedo;
@@ -39,6 +45,15 @@ struct FrameSlot {
   vk::Image aovScattering;
   vk::Image aovTransmittance;
   vk::Image aovDebug;
+};
+
+// One light of the scene as the renderer keeps it; lights[0] is Scene::light, then
+// Scene::additionalLights in order.
+struct LightState {
+  const Light* light = nullptr;  // into Renderer::Impl::scene
+  std::uint32_t shadowMapSize = 0;
+  ShadowViews shadowViews;
+  vk::Image color;  // the light's colour texture (R8G8B8A8_SRGB), or 1×1 white without one
 };
 
 std::uint32_t bytesPerPixel(VkFormat format) {
@@ -99,32 +114,33 @@ void decodePixels(VkFormat format, const std::uint8_t* data, std::size_t pixelCo
   }
 }
 
-bool validateLight(const Light& light, std::string& error) {
+// `name` prefixes the error: "light", or "lights[i]" in a scene with several.
+bool validateLight(const Light& light, const std::string& name, std::string& error) {
   if (!detail::isFinite(light.color) || !std::isfinite(light.intensity) || light.intensity < 0.0 ||
       light.color.x < 0.0 || light.color.y < 0.0 || light.color.z < 0.0) {
-    error = "light: colour and intensity must be finite and >= 0";
+    error = name + ": colour and intensity must be finite and >= 0";
     return false;
   }
   if (light.type == LightType::Directional) {
     if (!detail::isFinite(light.direction) || glm::length(light.direction) <= 0.0) {
-      error = "light: directional light needs a finite, non-zero direction";
+      error = name + ": directional light needs a finite, non-zero direction";
       return false;
     }
     return true;
   }
   if (!detail::isFinite(light.position)) {
-    error = "light: position must be finite";
+    error = name + ": position must be finite";
     return false;
   }
   if (light.type == LightType::Spot) {
     if (!detail::isFinite(light.direction) || glm::length(light.direction) <= 0.0) {
-      error = "light: spot light needs a finite, non-zero direction";
+      error = name + ": spot light needs a finite, non-zero direction";
       return false;
     }
     // The shadow frustum is 2·(outer + 5°) wide and must stay below 180°.
     if (!(light.outerConeDegrees > 0.0 && light.outerConeDegrees <= 80.0) ||
         !(light.innerConeDegrees >= 0.0 && light.innerConeDegrees <= light.outerConeDegrees)) {
-      error = "light: spot cones need 0 <= inner <= outer <= 80 degrees (outer > 0)";
+      error = name + ": spot cones need 0 <= inner <= outer <= 80 degrees (outer > 0)";
       return false;
     }
   }
@@ -138,7 +154,6 @@ struct Renderer::Impl {
   vk::GpuContext gpu;
   Scene scene;
   RenderSettings settings;
-  std::uint32_t shadowMapSize = 0;
   VkImageUsageFlags colorUsage = 0;
   VkImageUsageFlags aovUsage = 0;
 
@@ -147,9 +162,8 @@ struct Renderer::Impl {
   detail::ShadowPass shadowPass;
   detail::GBufferPass gbufferPass;
   detail::LightingPass lightingPass;
-  vk::Image lightColor;  // the light's colour texture (R8G8B8A8_SRGB), or 1×1 white without one
   CameraSetup camera;
-  ShadowViews shadowViews;
+  std::vector<LightState> lights;
   std::vector<FrameSlot> slots;
 
   std::vector<PostProcessEffect*> effects;  // not owned
@@ -176,15 +190,15 @@ struct Renderer::Impl {
   bool waitSlot(FrameSlot& slot, std::string& error);
   bool waitAll(std::string& error);
   bool readImage(const vk::Image& image, VkImageLayout layout, ImageRgba32f& out, std::string& error);
-  bool createLightColor(std::string& error);
+  bool createLightColor(const Light& light, vk::Image& lightColor, std::string& error);
 };
 
-// Uploads the light's colour texture once (a white texel when it has none, so the lighting pass
+// Uploads a light's colour texture once (a white texel when it has none, so the lighting pass
 // always has one to sample), SHADER_READ_ONLY_OPTIMAL from then on.
-bool Renderer::Impl::createLightColor(std::string& error) {
+bool Renderer::Impl::createLightColor(const Light& light, vk::Image& lightColor, std::string& error) {
   std::uint32_t width = 1, height = 1;
   std::vector<std::uint8_t> rgba8{255, 255, 255, 255};
-  if (!scene.light.colorTexture.empty() && !readPng(scene.light.colorTexture.string(), width, height, rgba8, error)) {
+  if (!light.colorTexture.empty() && !readPng(light.colorTexture.string(), width, height, rgba8, error)) {
     return false;
   }
   if (!lightColor.create(gpu, {VK_FORMAT_R8G8B8A8_SRGB, {width, height},
@@ -230,7 +244,6 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
   VkPhysicalDeviceProperties properties{};
   vkGetPhysicalDeviceProperties(gpu.physicalDevice, &properties);
   const std::uint32_t maxSize = properties.limits.maxImageDimension2D;
-  shadowMapSize = settings.shadowMapSize != 0 ? settings.shadowMapSize : scene.shadowMapSize;
   if (settings.framesInFlight < 1 || settings.framesInFlight > kMaxFramesInFlight) {
     error = "framesInFlight must be in [1, " + std::to_string(kMaxFramesInFlight) + "]";
     return false;
@@ -239,11 +252,22 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
     error = "image size must be in [1, " + std::to_string(maxSize) + "] in both directions";
     return false;
   }
-  if (shadowMapSize < 1 || shadowMapSize > maxSize) {
-    error = "shadow map size must be in [1, " + std::to_string(maxSize) + "]";
-    return false;
+  lights.resize(1 + scene.additionalLights.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    LightState& state = lights[i];
+    state.light = i == 0 ? &scene.light : &scene.additionalLights[i - 1];
+    // The command line's size (RenderSettings) overrides every light's, a light's its scene's.
+    state.shadowMapSize = settings.shadowMapSize != 0       ? settings.shadowMapSize
+                          : state.light->shadowMapSize != 0 ? state.light->shadowMapSize
+                                                            : scene.shadowMapSize;
+    if (state.shadowMapSize < 1 || state.shadowMapSize > maxSize) {
+      error = "shadow map size must be in [1, " + std::to_string(maxSize) + "]";
+      return false;
+    }
+    const std::string name = lights.size() == 1 ? "light" : "lights[" + std::to_string(i) + "]";
+    if (!validateLight(*state.light, name, error)) return false;
   }
-  if (!validateLight(scene.light, error) || !checkFormats(error)) return false;
+  if (!checkFormats(error)) return false;
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   // Each slot re-records its command buffer every frame.
@@ -256,9 +280,12 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
 
   // The shadow frusta are fitted to the geometry: build it first.
   if (!detail::buildSceneGeometry(gpu, pool.get(), scene, geometry, error) || !updateViews(error)) return false;
-  if (!createLightColor(error)) return false;
+  for (LightState& state : lights) {
+    if (!createLightColor(*state.light, state.color, error)) return false;
+  }
   if (!shadowPass.create(gpu, error) || !gbufferPass.create(gpu, camera.depthCompare, error) ||
-      !lightingPass.create(gpu, settings.backBufferFormat, settings.framesInFlight, error)) {
+      !lightingPass.create(gpu, settings.backBufferFormat, settings.framesInFlight,
+                           static_cast<std::uint32_t>(lights.size()), error)) {
     return false;
   }
 
@@ -319,17 +346,22 @@ bool Renderer::Impl::createSlot(FrameSlot& slot, std::string& error) {
   VkFence fence = VK_NULL_HANDLE;
   if (!vk::check(vkCreateFence(gpu.device, &fenceInfo, nullptr, &fence), "vkCreateFence", error)) return false;
   slot.fence = vk::UniqueFence(gpu.device, fence);
-  if (!slot.params.create(gpu, sizeof(gpu::LightingParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
-                          VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, error)) {
-    return false;
-  }
-  slot.shadowMaps.resize(shadowViews.worldToShadowClip.size());
-  for (vk::Image& map : slot.shadowMaps) {
-    const vk::Image::Desc desc{detail::kShadowFormat, {shadowMapSize, shadowMapSize},
-                               VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
-                                   VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
-                               "shadow map"};
-    if (!map.create(gpu, desc, error)) return false;
+  slot.lights.resize(lights.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    LightTargets& targets = slot.lights[i];
+    const std::uint32_t size = lights[i].shadowMapSize;
+    if (!targets.params.create(gpu, sizeof(gpu::LightingParams), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                               VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, error)) {
+      return false;
+    }
+    targets.shadowMaps.resize(lights[i].shadowViews.worldToShadowClip.size());
+    for (vk::Image& map : targets.shadowMaps) {
+      const vk::Image::Desc desc{detail::kShadowFormat, {size, size},
+                                 VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                                     VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                                 "shadow map"};
+      if (!map.create(gpu, desc, error)) return false;
+    }
   }
   return true;
 }
@@ -358,14 +390,16 @@ bool Renderer::Impl::createSizeDependent(std::string& error) {
         return false;
       }
     }
-    detail::LightingPass::SlotInputs inputs;
-    inputs.params = slot.params.buffer();
-    inputs.depth = slot.depth.view();
-    inputs.albedo = slot.albedo.view();
-    inputs.normal = slot.normal.view();
-    for (const vk::Image& map : slot.shadowMaps) inputs.shadowMaps.push_back(map.view());
-    inputs.lightColor = lightColor.view();
-    lightingPass.bindSlot(i, inputs);
+    for (std::uint32_t light = 0; light < lights.size(); ++light) {
+      detail::LightingPass::SlotInputs inputs;
+      inputs.params = slot.lights[light].params.buffer();
+      inputs.depth = slot.depth.view();
+      inputs.albedo = slot.albedo.view();
+      inputs.normal = slot.normal.view();
+      for (const vk::Image& map : slot.lights[light].shadowMaps) inputs.shadowMaps.push_back(map.view());
+      inputs.lightColor = lights[light].color.view();
+      lightingPass.bindSlot(i, light, inputs);
+    }
   }
   return true;
 }
@@ -376,37 +410,45 @@ bool Renderer::Impl::updateViews(std::string& error) {
     return false;
   }
   // Shadow frusta are fitted to the camera frustum too, whose aspect follows the image.
-  shadowViews = detail::fitShadowViews(scene, camera, geometry, shadowMapSize);
+  for (LightState& state : lights) {
+    state.shadowViews = detail::fitShadowViews(*state.light, camera, geometry, state.shadowMapSize);
+  }
   return true;
 }
 
 void Renderer::Impl::writeParams(FrameSlot& slot) const {
-  gpu::LightingParams p{};
-  for (std::size_t i = 0; i < 6; ++i) {
-    p.worldToShadowClip[i] = i < shadowViews.worldToShadowClip.size()
-                                 ? glm::mat4(shadowViews.worldToShadowClip[i])
-                                 : glm::mat4(1.0f);
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const LightState& state = lights[i];
+    const ShadowViews& shadowViews = state.shadowViews;
+    gpu::LightingParams p{};
+    for (std::size_t m = 0; m < 6; ++m) {
+      p.worldToShadowClip[m] = m < shadowViews.worldToShadowClip.size()
+                                   ? glm::mat4(shadowViews.worldToShadowClip[m])
+                                   : glm::mat4(1.0f);
+    }
+    p.viewToWorld = glm::mat4(glm::inverse(camera.view));
+    p.projection = glm::vec4(camera.projection[0][0], camera.projection[1][1], camera.projection[2][2],
+                             camera.projection[3][2]);
+    const Light& light = *state.light;
+    p.lightPosition = glm::vec4(glm::vec3(light.position), 1.0f);
+    const glm::dvec3 direction =
+        glm::length(light.direction) > 0.0 ? glm::normalize(light.direction) : glm::dvec3(0.0, -1.0, 0.0);
+    p.lightDirection = glm::vec4(glm::vec3(direction), 0.0f);
+    p.lightRadiance = glm::vec4(glm::vec3(light.color * light.intensity), 0.0f);
+    p.spotCone = glm::vec4(static_cast<float>(std::cos(glm::radians(light.outerConeDegrees))),
+                           static_cast<float>(std::cos(glm::radians(light.innerConeDegrees))), 0.0f, 0.0f);
+    p.shadow = glm::vec4(static_cast<float>(shadowViews.footprint), static_cast<float>(state.shadowMapSize), 0.0f,
+                         0.0f);
+    p.sky = glm::vec4(kSkyRadiance, camera.depthClear);
+    p.ambient = glm::vec4(kAmbient, 0.0f);
+    const int type = light.type == LightType::Directional ? gpu::kHostLightDirectional
+                     : light.type == LightType::Spot      ? gpu::kHostLightSpot
+                                                          : gpu::kHostLightPoint;
+    p.mode = glm::ivec4(type, static_cast<int>(shadowViews.worldToShadowClip.size()),
+                        static_cast<int>(settings.width), static_cast<int>(settings.height));
+    p.additive = glm::ivec4(i == 0 ? 0 : 1, 0, 0, 0);
+    std::memcpy(slot.lights[i].params.mapped(), &p, sizeof(p));  // coherent memory: visible at submission
   }
-  p.viewToWorld = glm::mat4(glm::inverse(camera.view));
-  p.projection = glm::vec4(camera.projection[0][0], camera.projection[1][1], camera.projection[2][2],
-                           camera.projection[3][2]);
-  const Light& light = scene.light;
-  p.lightPosition = glm::vec4(glm::vec3(light.position), 1.0f);
-  const glm::dvec3 direction =
-      glm::length(light.direction) > 0.0 ? glm::normalize(light.direction) : glm::dvec3(0.0, -1.0, 0.0);
-  p.lightDirection = glm::vec4(glm::vec3(direction), 0.0f);
-  p.lightRadiance = glm::vec4(glm::vec3(light.color * light.intensity), 0.0f);
-  p.spotCone = glm::vec4(static_cast<float>(std::cos(glm::radians(light.outerConeDegrees))),
-                         static_cast<float>(std::cos(glm::radians(light.innerConeDegrees))), 0.0f, 0.0f);
-  p.shadow = glm::vec4(static_cast<float>(shadowViews.footprint), static_cast<float>(shadowMapSize), 0.0f, 0.0f);
-  p.sky = glm::vec4(kSkyRadiance, camera.depthClear);
-  p.ambient = glm::vec4(kAmbient, 0.0f);
-  const int type = light.type == LightType::Directional ? gpu::kHostLightDirectional
-                   : light.type == LightType::Spot      ? gpu::kHostLightSpot
-                                                        : gpu::kHostLightPoint;
-  p.mode = glm::ivec4(type, static_cast<int>(shadowViews.worldToShadowClip.size()),
-                      static_cast<int>(settings.width), static_cast<int>(settings.height));
-  std::memcpy(slot.params.mapped(), &p, sizeof(p));  // coherent memory: visible at submission
 }
 
 void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const {
@@ -434,8 +476,10 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
   constexpr VkImageAspectFlags kColorAspect = VK_IMAGE_ASPECT_COLOR_BIT;
 
   vk::Barriers barriers;
-  for (const vk::Image& map : slot.shadowMaps) {
-    barriers.image(map.image(), kDepthAspect, kUndefined, kDepthLayout, previousUse, depthAttachment);
+  for (const LightTargets& light : slot.lights) {
+    for (const vk::Image& map : light.shadowMaps) {
+      barriers.image(map.image(), kDepthAspect, kUndefined, kDepthLayout, previousUse, depthAttachment);
+    }
   }
   barriers.image(slot.depth.image(), kDepthAspect, kUndefined, kDepthLayout, previousUse, depthAttachment)
       .image(slot.albedo.image(), kColorAspect, kUndefined, kColorLayout, previousUse, colorAttachment)
@@ -458,14 +502,19 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
     vkCmdClearColorImage(cmd, slot.aovDebug.image(), kAovLayout, &zero, 1, &range);
   }
 
-  for (std::size_t i = 0; i < slot.shadowMaps.size(); ++i) {
-    shadowPass.record(cmd, geometry, slot.shadowMaps[i], glm::mat4(shadowViews.worldToShadowClip[i]));
+  for (std::size_t light = 0; light < lights.size(); ++light) {
+    const std::vector<vk::Image>& maps = slot.lights[light].shadowMaps;
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+      shadowPass.record(cmd, geometry, maps[i], glm::mat4(lights[light].shadowViews.worldToShadowClip[i]));
+    }
   }
   gbufferPass.record(cmd, geometry, slot.depth, slot.albedo, slot.normal,
                      glm::mat4(camera.projection * camera.view), camera.depthClear);
 
-  for (const vk::Image& map : slot.shadowMaps) {
-    barriers.image(map.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead);
+  for (const LightTargets& light : slot.lights) {
+    for (const vk::Image& map : light.shadowMaps) {
+      barriers.image(map.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead);
+    }
   }
   barriers.image(slot.depth.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead)
       .image(slot.albedo.image(), kColorAspect, kColorLayout, kReadLayout, colorWritten, fragmentRead)
@@ -581,16 +630,26 @@ bool Renderer::renderFrame(std::string& error) {
   auto hostImage = [](const vk::Image& image, VkImageLayout layout, VkImageUsageFlags usage = 0) {
     return HostImage{image.image(), image.view(), image.format(), image.extent(), layout, usage};
   };
-  for (std::size_t i = 0; i < slot.shadowMaps.size(); ++i) {
-    inputs.shadowMaps.push_back({hostImage(slot.shadowMaps[i], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
-                                 glm::mat4(r.shadowViews.worldToShadowClip[i])});
+  // Light i's shadow maps and colour texture, as effects see them.
+  const auto lightImages = [&](std::size_t i, std::vector<HostShadowMap>& maps, HostImage& lightColor) {
+    const std::vector<vk::Image>& images = slot.lights[i].shadowMaps;
+    for (std::size_t m = 0; m < images.size(); ++m) {
+      maps.push_back({hostImage(images[m], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
+                      glm::mat4(r.lights[i].shadowViews.worldToShadowClip[m])});
+    }
+    if (!r.lights[i].light->colorTexture.empty()) {
+      lightColor = hostImage(r.lights[i].color, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+  };
+  lightImages(0, inputs.shadowMaps, inputs.lightColor);
+  for (std::size_t i = 1; i < r.lights.size(); ++i) {
+    LightInputs& light = inputs.additionalLights.emplace_back();
+    light.light = r.lights[i].light;
+    lightImages(i, light.shadowMaps, light.lightColor);
   }
   inputs.depth = hostImage(slot.depth, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
   // Effects choose a compute composite only when the back buffer reports STORAGE usage.
   inputs.color = hostImage(slot.color, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, r.colorUsage);
-  if (!r.scene.light.colorTexture.empty()) {
-    inputs.lightColor = hostImage(r.lightColor, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-  }
   if (r.settings.aovImages) {
     inputs.aovScattering = hostImage(slot.aovScattering, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
     inputs.aovTransmittance = hostImage(slot.aovTransmittance, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);

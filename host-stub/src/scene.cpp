@@ -190,17 +190,30 @@ void parseCone(const Json& json, const std::string& path, Light& light) {
   }
 }
 
-Light parseLight(const Json& json, const std::filesystem::path& baseDir) {
-  const std::string path = "light";
+std::uint32_t parseShadowMap(const Json& json, const std::string& path) {
+  requireObject(json, path);
+  requireKnownKeys(json, path, {"size"});
+  const std::string sizePath = child(path, "size");
+  const Json& size = requireMember(json, path, "size");
+  if (!size.is_number_integer()) fail(sizePath, "must be an integer");
+  const auto value = size.get<std::int64_t>();
+  const bool powerOfTwo = value > 0 && (value & (value - 1)) == 0;
+  if (!powerOfTwo || value < kMinShadowMapSize || value > kMaxShadowMapSize) {
+    fail(sizePath, "must be a power of two in [16, 16384]");
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+Light parseLight(const Json& json, const std::string& path, const std::filesystem::path& baseDir) {
   requireObject(json, path);
   Light light;
   light.type = parseLightType(json, path);
   if (light.type == LightType::Directional) {
-    requireKnownKeys(json, path, {"type", "direction", "color", "intensity", "colorTexture"});
+    requireKnownKeys(json, path, {"type", "direction", "color", "intensity", "colorTexture", "shadowMap"});
     light.direction = readDirection(json, path, "direction");
   } else {
     requireKnownKeys(json, path, {"type", "position", "direction", "color", "intensity",
-                                  "innerConeDegrees", "outerConeDegrees", "colorTexture"});
+                                  "innerConeDegrees", "outerConeDegrees", "colorTexture", "shadowMap"});
     light.position = readVec3(json, path, "position");
     // A point light shines everywhere: its direction only orients the six shadow frusta.
     const bool needsDirection = light.type == LightType::Spot || findMember(json, "direction") != nullptr;
@@ -222,7 +235,32 @@ Light parseLight(const Json& json, const std::filesystem::path& baseDir) {
       fail(texturePath, "names no readable file ('" + light.colorTexture.string() + "')");
     }
   }
+  if (const Json* shadowMap = findMember(json, "shadowMap")) {
+    light.shadowMapSize = parseShadowMap(*shadowMap, child(path, "shadowMap"));
+  }
   return light;
+}
+
+// "light": LIGHT or "lights": [LIGHT, …], exactly one of them; the first light becomes
+// Scene::light so that code written for one light keeps reading it there.
+void parseLights(const Json& json, const std::filesystem::path& baseDir, Scene& scene) {
+  const Json* single = findMember(json, "light");
+  const Json* list = findMember(json, "lights");
+  if (single != nullptr && list != nullptr) {
+    fail("lights", "cannot come with light (a scene has \"light\" or \"lights\", not both)");
+  }
+  if (single != nullptr) {
+    scene.light = parseLight(*single, "light", baseDir);
+    return;
+  }
+  if (list == nullptr) fail("light", "is missing (a scene has \"light\" or \"lights\")");
+  const std::string path = "lights";
+  if (!list->is_array()) fail(path, "must be an array");
+  if (list->empty() || list->size() > kMaxSceneLights) fail(path, "must hold 1 to 8 lights");
+  scene.light = parseLight((*list)[0], element(path, 0), baseDir);
+  for (std::size_t i = 1; i < list->size(); ++i) {
+    scene.additionalLights.push_back(parseLight((*list)[i], element(path, i), baseDir));
+  }
 }
 
 PhaseType parsePhaseType(const std::string& name, const std::string& path) {
@@ -354,32 +392,19 @@ std::vector<Object> parseObjects(const Json& json, const std::filesystem::path& 
   return objects;
 }
 
-std::uint32_t parseShadowMap(const Json& json) {
-  const std::string path = "shadowMap";
-  requireObject(json, path);
-  requireKnownKeys(json, path, {"size"});
-  const std::string sizePath = child(path, "size");
-  const Json& size = requireMember(json, path, "size");
-  if (!size.is_number_integer()) fail(sizePath, "must be an integer");
-  const auto value = size.get<std::int64_t>();
-  const bool powerOfTwo = value > 0 && (value & (value - 1)) == 0;
-  if (!powerOfTwo || value < kMinShadowMapSize || value > kMaxShadowMapSize) {
-    fail(sizePath, "must be a power of two in [16, 16384]");
-  }
-  return static_cast<std::uint32_t>(value);
-}
-
 Scene parseSceneJson(const Json& json, const std::filesystem::path& baseDir) {
   requireObject(json, "");
   // "description" lets a scene file say what it is for; it is not used.
-  requireKnownKeys(json, "", {"description", "camera", "light", "medium", "objects", "shadowMap"});
+  requireKnownKeys(json, "", {"description", "camera", "light", "lights", "medium", "objects", "shadowMap"});
   if (const Json* description = findMember(json, "description")) toString(*description, "description");
   Scene scene;
   scene.camera = parseCamera(requireMember(json, "", "camera"));
-  scene.light = parseLight(requireMember(json, "", "light"), baseDir);
+  parseLights(json, baseDir, scene);
   scene.medium = parseMedium(requireMember(json, "", "medium"));
   scene.objects = parseObjects(requireMember(json, "", "objects"), baseDir);
-  if (const Json* shadowMap = findMember(json, "shadowMap")) scene.shadowMapSize = parseShadowMap(*shadowMap);
+  if (const Json* shadowMap = findMember(json, "shadowMap")) {
+    scene.shadowMapSize = parseShadowMap(*shadowMap, "shadowMap");
+  }
   return scene;
 }
 

@@ -62,9 +62,9 @@ Box lightSpaceBox(const glm::dmat4& view, const glm::vec3* points, std::size_t c
   return box;
 }
 
-ShadowViews fitDirectional(const Scene& scene, const CameraSetup& camera, const SceneGeometry& geometry,
+ShadowViews fitDirectional(const Light& light, const CameraSetup& camera, const SceneGeometry& geometry,
                            std::uint32_t mapSize) {
-  const glm::dmat4 view = lookAlong(glm::dvec3(0.0), glm::normalize(scene.light.direction));
+  const glm::dmat4 view = lookAlong(glm::dvec3(0.0), glm::normalize(light.direction));
 
   Box frustum;
   for (const glm::dvec3& corner : camera.frustumCorners) {
@@ -151,10 +151,9 @@ void fitRange(const glm::dvec3& position, const CameraSetup& camera, const Scene
 
 }  // namespace
 
-ShadowViews fitShadowViews(const Scene& scene, const CameraSetup& camera, const SceneGeometry& geometry,
+ShadowViews fitShadowViews(const Light& light, const CameraSetup& camera, const SceneGeometry& geometry,
                            std::uint32_t mapSize) {
-  const Light& light = scene.light;
-  if (light.type == LightType::Directional) return fitDirectional(scene, camera, geometry, mapSize);
+  if (light.type == LightType::Directional) return fitDirectional(light, camera, geometry, mapSize);
 
   double n = 0.0;
   double f = 0.0;

@@ -315,6 +315,15 @@ bool createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc, U
   for (VkPipelineColorBlendAttachmentState& attachment : blendAttachments) {
     attachment.colorWriteMask = VK_COLOR_COMPONENT_R_BIT | VK_COLOR_COMPONENT_G_BIT |
                                 VK_COLOR_COMPONENT_B_BIT | VK_COLOR_COMPONENT_A_BIT;
+    if (desc.additiveBlend) {
+      attachment.blendEnable = VK_TRUE;
+      attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      attachment.colorBlendOp = VK_BLEND_OP_ADD;
+      attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+      attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
   }
   VkPipelineColorBlendStateCreateInfo blend{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
   blend.attachmentCount = static_cast<std::uint32_t>(blendAttachments.size());

@@ -173,6 +173,7 @@ struct GraphicsPipelineDesc {
   VkFormat depthFormat = VK_FORMAT_UNDEFINED;
   VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
   bool depthClamp = false;
+  bool additiveBlend = false;  // colour attachments: rgb += fragment rgb, alpha kept
 };
 
 bool createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc, UniquePipeline& out,

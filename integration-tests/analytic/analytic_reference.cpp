@@ -283,6 +283,8 @@ double rayLength(const AnalyticScene& analytic, const host::Camera& camera, cons
 bool checkSupported(const host::Scene& scene, std::uint32_t width, std::uint32_t height, std::string& error) {
   if (width == 0 || height == 0) {
     error = "the image size must be non-zero";
+  } else if (!scene.additionalLights.empty()) {
+    error = "the analytic reference supports one light only";
   } else if (scene.light.type != host::LightType::Directional) {
     error = "the analytic reference supports directional lights only";
   } else if (scene.medium.empty()) {

@@ -29,7 +29,7 @@ struct RgbImage {
 
 /// Per pixel: the in-scattered radiance L_in and the transmittance exp(−σ_t s) of a directional-light
 /// scene of planes, boxes and spheres. Returns false with `error` for unsupported scenes
-/// (non-directional light, glTF objects, no medium, zero image size).
+/// (more than one light, non-directional light, glTF objects, no medium, zero image size).
 bool renderAnalytic(const host::Scene& scene, std::uint32_t width, std::uint32_t height,
                     RgbImage& scattering, RgbImage& transmittance, std::string& error);
 

@@ -120,6 +120,31 @@ std::vector<BadCase> badCases() {
          f.shadowMaps = s.shadowMaps;
          f.lightColor = f.color;
        }},
+      {"eight additional lights", invalid, [](F& f, S& s) {
+         s.additionalLights.assign(kMaxLights, LightInput{f.light, f.shadowMaps, {}});
+         f.additionalLights = s.additionalLights;
+       }, "additionalLights holds 8"},
+      {"additional light with a NaN intensity", invalid, [](F& f, S& s) {
+         s.additionalLights.assign(2, LightInput{f.light, f.shadowMaps, {}});
+         s.additionalLights[1].light.intensity = kNaN;
+         f.additionalLights = s.additionalLights;
+       }, "additionalLights[1].light.intensity"},
+      {"additional point light with one shadow map", invalid, [](F& f, S& s) {
+         s.additionalLights.assign(1, LightInput{f.light, f.shadowMaps, {}});
+         s.additionalLights[0].light.type = LightType::Point;
+         s.additionalLights[0].light.position = {0.0f, 5.0f, 0.0f};
+         f.additionalLights = s.additionalLights;
+       }, "additionalLights[0].shadowMaps"},
+      {"additional light with a singular shadow matrix", invalid, [](F& f, S& s) {
+         s.additionalShadowMaps.assign(1, {f.shadowMaps[0]});
+         s.additionalShadowMaps[0][0].worldToShadowClip = Mat4{};
+         s.additionalLights.assign(1, LightInput{f.light, s.additionalShadowMaps[0], {}});
+         f.additionalLights = s.additionalLights;
+       }, "additionalLights[0].shadowMaps[0].worldToShadowClip"},
+      {"additional light's colour texture in a depth format", Status::UnsupportedFormat, [](F& f, S& s) {
+         s.additionalLights.assign(1, LightInput{f.light, f.shadowMaps, f.depth});
+         f.additionalLights = s.additionalLights;
+       }, "additionalLights[0].lightColor"},
       {"debug view without an image", invalid, [](F& f, S&) { f.debugView = DebugView::EpipolarSamples; }},
       {"unknown debug view", invalid, [](F& f, S&) {
          f.debugView = static_cast<DebugView>(7);

@@ -510,6 +510,12 @@ TEST(RenderAnalytic, RejectsUnsupportedScenes) {
   EXPECT_NE(error.find("directional"), std::string::npos) << error;
   EXPECT_FALSE(renderAnalytic(loadSample("gltf-tetrahedron.json"), 16, 9, scattering, transmittance, error));
   EXPECT_NE(error.find("glTF"), std::string::npos) << error;
+  // A second light, even a directional one, would be ignored: refused instead.
+  host::Scene twoSuns = loadSample("analytic-spheres.json");
+  twoSuns.additionalLights.push_back(twoSuns.light);
+  error.clear();
+  EXPECT_FALSE(renderAnalytic(twoSuns, 16, 9, scattering, transmittance, error));
+  EXPECT_NE(error.find("one light"), std::string::npos) << error;
   EXPECT_FALSE(renderAnalytic(loadSample("analytic-spheres.json"), 0, 9, scattering, transmittance, error));
   EXPECT_FALSE(error.empty());
 }

@@ -5,6 +5,8 @@
 
 #include "vulkan_projection.h"
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "camera.h"
 
 namespace {
@@ -68,6 +70,36 @@ TEST(Projection, RejectsBadMatrices) {
     EXPECT_FALSE(o.ok());
     EXPECT_EQ(o.status, tyndall::Status::InvalidArgument);
     EXPECT_NE(o.message.find("near >= far"), std::string::npos) << o.message;
+  }
+}
+
+// A spot light's cone against the view pyramid of a camera at (0, 0, 5) looking down −z (60°
+// vertical, 16:9: the horizontal half-angle is 45.7°), with each depth convention.
+TEST(SpotCulling, OnlyConesWhollyOutsideOneSidePlaneMissTheView) {
+  const double radians = std::acos(-1.0) / 180.0;
+  for (bool reversed : {false, true}) {
+    const glm::dmat4 clipToView = glm::inverse(vulkanPerspective(60.0 * radians, 16.0 / 9.0, 0.1, 100.0, reversed));
+    const glm::dmat4 viewToWorld = glm::translate(glm::dmat4(1.0), glm::dvec3(0.0, 0.0, 5.0));
+    auto misses = [&](glm::dvec3 position, glm::dvec3 axis, double outerDegrees) {
+      return tyndall::spotConeMissesView(viewToWorld, clipToView, position, glm::normalize(axis), outerDegrees * radians);
+    };
+    // Behind the camera, shining away, however wide: behind the plane the view rays start from.
+    EXPECT_TRUE(misses({0, 0, 9}, {0, 0, 1}, 35.0));
+    EXPECT_TRUE(misses({0, 0, 9}, {0, 0, 1}, 85.0));
+    // Behind, shining sideways and a little back: its edge rays run flatter than the view's edge
+    // and never catch up with it. Shining sideways and forward: they cross into the view.
+    EXPECT_TRUE(misses({0, 0, 9}, {1, 0, 0.2}, 40.0));
+    EXPECT_FALSE(misses({0, 0, 9}, {1, 0, -1.5}, 40.0));
+    // In front, shining down across the view: seen.
+    EXPECT_FALSE(misses({0, 3, -5}, {0, -1, 0}, 30.0));
+    // Far to the right, shining further right: misses; shining left into the view: seen.
+    EXPECT_TRUE(misses({40, 0, -5}, {1, 0, 0}, 30.0));
+    EXPECT_FALSE(misses({40, 0, -5}, {-1, 0, 0}, 30.0));
+    // Apex in the view: seen whatever it points at.
+    EXPECT_FALSE(misses({0, 0, -5}, {0, 0, 1}, 10.0));
+    // Above the view shining up; and the camera itself inside a cone pointing away.
+    EXPECT_TRUE(misses({0, 40, -5}, {0, 1, 0}, 20.0));
+    EXPECT_FALSE(misses({0, 0, 5}, {0, 0, 1}, 20.0));
   }
 }
 

@@ -25,6 +25,7 @@ const std::filesystem::path kScenesDir = TYNDALL_SCENES_DIR;
 struct SceneParts {
   std::string camera = R"({"position": [0, 1, 5], "target": [0, 1, 0], "up": [0, 1, 0],
                           "fovYDegrees": 60, "near": 0.1, "far": 100})";
+  std::string lightKey = "light";  // "lights": `light` holds a list; empty: no light
   std::string light = R"({"type": "directional", "direction": [0, -2, 0], "color": [1, 1, 1], "intensity": 2})";
   std::string medium = R"({"scattering": [0.1, 0.1, 0.1], "absorption": [0, 0, 0],
                           "phase": {"type": "henyey-greenstein", "g": 0.5}})";
@@ -32,10 +33,21 @@ struct SceneParts {
   std::string extra = R"(, "shadowMap": {"size": 1024})";
 
   std::string text() const {
-    return R"({"camera": )" + camera + R"(, "light": )" + light + R"(, "medium": )" + medium +
+    const std::string lights = lightKey.empty() ? "" : R"(, ")" + lightKey + R"(": )" + light;
+    return R"({"camera": )" + camera + lights + R"(, "medium": )" + medium +
            R"(, "objects": )" + objects + extra + "}";
   }
 };
+
+// A "lights" list of `count` directional lights, intensities 1, 2, …
+std::string directionalLights(int count) {
+  std::string list;
+  for (int i = 0; i < count; ++i) {
+    list += std::string(i == 0 ? "" : ", ") + R"({"type": "directional", "direction": [0, -1, 0], "intensity": )" +
+            std::to_string(i + 1) + "}";
+  }
+  return "[" + list + "]";
+}
 
 Scene parseOrFail(const std::string& text) {
   SceneLoadResult result = parseScene(text, kScenesDir);
@@ -100,6 +112,14 @@ TEST(SceneLoading, SampleScenesHaveTheirDocumentedContent) {
   EXPECT_EQ(spot.light.type, LightType::Spot);
   EXPECT_DOUBLE_EQ(spot.light.innerConeDegrees, 20.0);
   EXPECT_DOUBLE_EQ(spot.light.outerConeDegrees, 30.0);
+  const Scene street = load("street-dusk.json");
+  EXPECT_EQ(street.light.type, LightType::Directional);
+  ASSERT_EQ(street.additionalLights.size(), 3u);
+  for (const Light& lamp : street.additionalLights) {
+    EXPECT_EQ(lamp.type, LightType::Spot);
+    EXPECT_EQ(lamp.shadowMapSize, 1024u);
+    EXPECT_LT(lamp.direction.y, -0.99);  // hanging over the street, pointing down
+  }
   const Scene mixed = load("analytic-mixed.json");
   ASSERT_EQ(mixed.medium.size(), 2u);
   EXPECT_EQ(mixed.medium[0].phase, PhaseType::Rayleigh);
@@ -164,6 +184,54 @@ TEST(SceneLoading, SpotAndPointLights) {
   expectNear(point.light.color, glm::dvec3(1.0), 0.0);
 }
 
+TEST(SceneLoading, LightsListBecomesTheLightAndTheAdditionalLightsInOrder) {
+  SceneParts parts;
+  parts.lightKey = "lights";
+  parts.light = R"([{"type": "directional", "direction": [0, -2, 0], "intensity": 2},
+                    {"type": "spot", "position": [1, 5, 2], "direction": [0, -1, 0], "intensity": 40,
+                     "innerConeDegrees": 10, "outerConeDegrees": 15},
+                    {"type": "point", "position": [-3, 4, 1], "color": [1, 0.5, 0.25], "intensity": 7}])";
+  const Scene scene = parseOrFail(parts.text());
+  EXPECT_EQ(scene.light.type, LightType::Directional);
+  expectNear(scene.light.direction, {0.0, -1.0, 0.0}, 1e-15);
+  EXPECT_DOUBLE_EQ(scene.light.intensity, 2.0);
+  ASSERT_EQ(scene.additionalLights.size(), 2u);
+  EXPECT_EQ(scene.additionalLights[0].type, LightType::Spot);
+  expectNear(scene.additionalLights[0].position, {1.0, 5.0, 2.0}, 0.0);
+  EXPECT_DOUBLE_EQ(scene.additionalLights[0].intensity, 40.0);
+  EXPECT_DOUBLE_EQ(scene.additionalLights[0].outerConeDegrees, 15.0);
+  EXPECT_EQ(scene.additionalLights[1].type, LightType::Point);
+  expectNear(scene.additionalLights[1].color, {1.0, 0.5, 0.25}, 0.0);
+  EXPECT_DOUBLE_EQ(scene.additionalLights[1].intensity, 7.0);
+
+  // A list of one is the single light; "light" has no additional lights.
+  parts.light = directionalLights(1);
+  EXPECT_TRUE(parseOrFail(parts.text()).additionalLights.empty());
+  EXPECT_TRUE(parseOrFail(SceneParts{}.text()).additionalLights.empty());
+  parts.light = directionalLights(8);
+  const Scene eight = parseOrFail(parts.text());
+  ASSERT_EQ(eight.additionalLights.size(), 7u);
+  EXPECT_DOUBLE_EQ(eight.additionalLights[6].intensity, 8.0);
+}
+
+TEST(SceneLoading, PerLightShadowMapSizeOverridesTheScenes) {
+  SceneParts parts;
+  parts.lightKey = "lights";
+  parts.light = R"([{"type": "directional", "direction": [0, -1, 0], "intensity": 1},
+                    {"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 1,
+                     "shadowMap": {"size": 512}}])";
+  const Scene scene = parseOrFail(parts.text());
+  EXPECT_EQ(scene.shadowMapSize, 1024u);
+  EXPECT_EQ(scene.light.shadowMapSize, 0u);  // the scene's
+  ASSERT_EQ(scene.additionalLights.size(), 1u);
+  EXPECT_EQ(scene.additionalLights[0].shadowMapSize, 512u);
+
+  // The single "light" takes one too.
+  parts = SceneParts{};
+  parts.light = R"({"type": "directional", "direction": [0, -1, 0], "intensity": 1, "shadowMap": {"size": 4096}})";
+  EXPECT_EQ(parseOrFail(parts.text()).light.shadowMapSize, 4096u);
+}
+
 TEST(SceneLoading, RelativeGltfPathsResolveAgainstTheSceneFolder) {
   const SceneLoadResult result = loadScene(kScenesDir / "gltf-tetrahedron.json");
   ASSERT_TRUE(result.scene.has_value()) << result.error;
@@ -201,6 +269,12 @@ struct BadScene {
 SceneParts with(std::string SceneParts::*part, std::string value) {
   SceneParts parts;
   parts.*part = std::move(value);
+  return parts;
+}
+
+SceneParts withLights(std::string list) {
+  SceneParts parts = with(&SceneParts::light, std::move(list));
+  parts.lightKey = "lights";
   return parts;
 }
 
@@ -286,7 +360,32 @@ std::vector<BadScene> badScenes() {
       {"ShadowMapTooSmall", with(&P::extra, R"(, "shadowMap": {"size": 8})"), "shadowMap.size must be a power of two in [16, 16384]"},
       {"ShadowMapTooLarge", with(&P::extra, R"(, "shadowMap": {"size": 32768})"), "shadowMap.size must be a power of two in [16, 16384]"},
       {"ShadowMapFraction", with(&P::extra, R"(, "shadowMap": {"size": 2048.5})"), "shadowMap.size must be an integer"},
-      {"UnknownTopLevelKey", with(&P::extra, R"(, "lights": [])"), "lights is an unknown key"},
+      {"UnknownTopLevelKey", with(&P::extra, R"(, "lamps": [])"), "lamps is an unknown key"},
+      {"LightAndLights", with(&P::extra, R"(, "lights": )" + directionalLights(2)),
+       R"(a scene has "light" or "lights", not both)"},
+      {"NoLightAtAll", with(&P::lightKey, ""), "light is missing"},
+      {"LightsEmpty", withLights("[]"), "lights must hold 1 to 8 lights"},
+      {"NineLights", withLights(directionalLights(9)), "lights must hold 1 to 8 lights"},
+      {"LightsNotArray", withLights(R"({"type": "directional", "direction": [0, -1, 0], "intensity": 1})"),
+       "lights must be an array"},
+      {"ThirdLightNegativeIntensity",
+       withLights(R"([{"type": "directional", "direction": [0, -1, 0], "intensity": 1},
+                      {"type": "point", "position": [0, 5, 0], "intensity": 1},
+                      {"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": -3}])"),
+       "lights[2].intensity must be >= 0"},
+      {"ThirdLightUnknownKey",
+       withLights(R"([{"type": "directional", "direction": [0, -1, 0], "intensity": 1},
+                      {"type": "point", "position": [0, 5, 0], "intensity": 1},
+                      {"type": "point", "position": [0, 5, 0], "intensity": 1, "radius": 2}])"),
+       "lights[2].radius is an unknown key"},
+      {"ThirdLightShadowMapSize",
+       withLights(R"([{"type": "directional", "direction": [0, -1, 0], "intensity": 1},
+                      {"type": "point", "position": [0, 5, 0], "intensity": 1},
+                      {"type": "point", "position": [0, 5, 0], "intensity": 1, "shadowMap": {"size": 1000}}])"),
+       "lights[2].shadowMap.size must be a power of two in [16, 16384]"},
+      {"LightShadowMapUnknownKey",
+       with(&P::light, R"({"type": "directional", "direction": [0, -1, 0], "intensity": 1, "shadowMap": {"sizes": 64}})"),
+       "light.shadowMap.sizes is an unknown key"},
       {"NaNLiteral", with(&P::extra, R"(, "shadowMap": {"size": NaN})"), "invalid JSON"},
       {"OverflowingNumber", with(&P::objects, R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e999}])"), "invalid JSON"},
   };

@@ -56,4 +56,32 @@ Outcome analyzeProjection(const glm::dmat4& p, ProjectionInfo& out) {
   return {};
 }
 
+bool spotConeMissesView(const glm::dmat4& viewToWorld, const glm::dmat4& clipToView, const glm::dvec3& position,
+                        const glm::dvec3& axis, double outerCone) {
+  // The image's four corner rays in view space (any depth of the ray will do: the planes pass
+  // through the camera).
+  glm::dvec3 corner[4];
+  const double xs[4] = {-1.0, 1.0, 1.0, -1.0};
+  const double ys[4] = {-1.0, -1.0, 1.0, 1.0};
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec4 v = clipToView * glm::dvec4(xs[i], ys[i], 0.5, 1.0);
+    corner[i] = glm::dvec3(v) / v.w;
+  }
+  const glm::dvec3 camera = glm::dvec3(viewToWorld * glm::dvec4(0.0, 0.0, 0.0, 1.0));
+  const glm::dmat3 normalToWorld = glm::transpose(glm::inverse(glm::dmat3(viewToWorld)));
+  const glm::dvec3 centre = corner[0] + corner[1] + corner[2] + corner[3];
+  // The four side planes, and the plane through the camera facing the view (rays start there).
+  for (int i = 0; i < 5; ++i) {
+    glm::dvec3 inward = i == 4 ? centre : glm::cross(corner[i], corner[(i + 1) % 4]);
+    if (glm::dot(inward, centre) < 0.0) inward = -inward;
+    const glm::dvec3 n = normalToWorld * inward;
+    const double length = glm::length(n);
+    if (!(length > 0.0)) continue;
+    // Outside the plane: the apex behind it and every direction of the cone leading further out
+    // (the angle between the inward normal and the axis at least π/2 + the half-angle).
+    if (glm::dot(n, position - camera) < 0.0 && glm::dot(n / length, axis) <= -std::sin(outerCone)) return true;
+  }
+  return false;
+}
+
 }  // namespace tyndall

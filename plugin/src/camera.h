@@ -21,4 +21,11 @@ struct ProjectionInfo {
 /// non-finite, singular, non-perspective matrices and for near ≤ 0 or near ≥ far.
 Outcome analyzeProjection(const glm::dmat4& projection, ProjectionInfo& out);
 
+/// Whether a spot light's cone (apex `position`, unit `axis`, half-angle `outerCone` < π/2) lies
+/// wholly outside one side plane of the view pyramid (the camera's rays through the four edges of
+/// the image) or behind the camera, so that no view ray crosses it. Conservative: false whenever
+/// no single plane separates them.
+bool spotConeMissesView(const glm::dmat4& viewToWorld, const glm::dmat4& clipToView, const glm::dvec3& position,
+                        const glm::dvec3& axis, double outerCone);
+
 }  // namespace tyndall

@@ -8,6 +8,7 @@
 
 #include "auto_profile.h"
 #include "composite/composite_pass.h"
+#include "composite/light_sum_pass.h"
 #include "epipolar/epipolar_technique.h"
 #include "frame_setup.h"
 #include "gpu.h"
@@ -107,6 +108,37 @@ struct Context::Impl {
     }
     return nullptr;
   }
+  // The techniques of each additional light (FrameDesc::additionalLights[i] uses additional[i]):
+  // created at the first frame with that light, recording with the first light's pipelines
+  // (ScatteringTechnique::sharePipelinesOf), each with its own constants per frame slot.
+  struct LightTechniques {
+    ReferenceTechnique reference;
+    EpipolarTechnique epipolar;
+    PrefilteredTechnique prefiltered;
+    std::vector<MappedBuffer> constants;  // one per frame slot
+    std::array<ScatteringTechnique*, 3> all() { return {&reference, &epipolar, &prefiltered}; }
+    ScatteringTechnique* techniqueFor(Technique technique) {
+      switch (technique) {
+        case Technique::Reference: return &reference;
+        case Technique::Epipolar: return &epipolar;
+        case Technique::Prefiltered: return &prefiltered;
+        case Technique::None: break;
+      }
+      return nullptr;
+    }
+  };
+  std::array<std::unique_ptr<LightTechniques>, kMaxLights - 1> additional;
+  /// Light `index`'s instance of `technique` (0: FrameDesc::light's), null for Technique::None.
+  ScatteringTechnique* instanceFor(std::size_t index, Technique technique) {
+    return index == 0 ? techniqueFor(technique) : additional[index - 1]->techniqueFor(technique);
+  }
+  VkBuffer constantsFor(std::size_t index, std::uint32_t slot) const {
+    return index == 0 ? constants[slot].buffer : additional[index - 1]->constants[slot].buffer;
+  }
+  void* mappedConstantsFor(std::size_t index, std::uint32_t slot) const {
+    return index == 0 ? constants[slot].mapped : additional[index - 1]->constants[slot].mapped;
+  }
+  LightSumPass lightSum;
   CompositePass composite;
   AutoProfile autoProfile;
   std::uint64_t lastTimedFrame = ~0ull;  // the latest frame whose time went to autoProfile
@@ -120,6 +152,9 @@ struct Context::Impl {
   bool scatteringUsed = false;
   RetireQueue<OwnedImage> retiredTargets;
   OwnedImage aovTarget;  // full resolution, for the AOVs of a reduced target; at the first such frame
+  // An additional light's L_in before the light sum adds it to `scattering`: at the first frame
+  // with two lights that run, of the target's extent (one of another extent is retired).
+  OwnedImage lightTarget;
   Outcome resizeFailure;  // why there are no size-dependent resources (until a resize succeeds)
   OwnedImage debugImage;  // created at the first frame that draws a debug view
   Stats stats;
@@ -133,6 +168,8 @@ struct Context::Impl {
   }
 
   Outcome createSizeIndependent();
+  /// The techniques and constants of additional light `index` (≥ 1), created the first time.
+  Outcome ensureAdditionalLight(std::size_t index);
   Outcome warmUp();
   /// The pipelines `technique` needs for this frame's light, compiled now if they are not yet.
   Outcome ensurePipelines(Technique technique, const FrameDesc& frame);
@@ -143,10 +180,18 @@ struct Context::Impl {
   Outcome useResolution(ScatteringResolution wanted);
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
+  /// A light that runs its technique this frame: its index (0: FrameDesc::light), the frame as
+  /// that light sees it, and its instance of the technique.
+  struct LightRun {
+    std::size_t index = 0;
+    FrameDesc frame;
+    ScatteringTechnique* technique = nullptr;
+  };
   void recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                        ScatteringTechnique* technique);
-  // `release` receives the barriers that hand the inputs back and the target to the composite.
-  void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, ScatteringTechnique& technique,
+                        const std::vector<LightRun>& runs);
+  // `release` receives the barriers that hand the inputs back to the host; `target` (the L_in
+  // target or the light target) is left in GENERAL, written by compute shaders.
+  void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const LightRun& run, const OwnedImage& target,
                        VkImageLayout depthLayout, BarrierBatch& release);
   void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets);
 };
@@ -174,6 +219,7 @@ Outcome Context::Impl::createSizeIndependent() {
     if (Outcome o = technique->create(gpu, resources); !o) return o;
   }
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
+  if (Outcome o = lightSum.create(gpu, desc.maxFramesInFlight * (kMaxLights - 1)); !o) return o;
   if (tuning.pipelineCreation == PipelineCreation::AtCreate) {
     if (Outcome o = warmUp(); !o) return o;
   }
@@ -186,6 +232,35 @@ Outcome Context::Impl::createSizeIndependent() {
       if (Outcome o = composite.ensureComputePipeline(gpu, desc.backBufferFormat); !o) return o;
     }
   }
+  return {};
+}
+
+Outcome Context::Impl::ensureAdditionalLight(std::size_t index) {
+  std::unique_ptr<LightTechniques>& light = additional[index - 1];
+  if (light) return {};
+  auto created = std::make_unique<LightTechniques>();
+  TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
+  resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
+  // Destroys what was created when a step fails: nothing half-built is kept.
+  auto discard = [&](Outcome failed) {
+    for (ScatteringTechnique* t : created->all()) t->destroy(gpu);
+    for (MappedBuffer& buffer : created->constants) destroyBuffer(gpu, buffer);
+    return failed;
+  };
+  for (ScatteringTechnique* t : created->all()) {
+    if (Outcome o = t->create(gpu, resources); !o) return discard(o);
+  }
+  created->reference.sharePipelinesOf(reference);
+  created->epipolar.sharePipelinesOf(epipolar);
+  created->prefiltered.sharePipelinesOf(prefiltered);
+  created->constants.resize(desc.maxFramesInFlight);
+  for (MappedBuffer& buffer : created->constants) {
+    if (Outcome o = createMappedBuffer(gpu, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, buffer); !o) {
+      return discard(o);
+    }
+  }
+  light = std::move(created);
+  report(Severity::Info, "techniques for light " + std::to_string(index) + " created");
   return {};
 }
 
@@ -238,6 +313,12 @@ Outcome Context::Impl::useResolution(ScatteringResolution wanted) {
 
 void Context::Impl::destroySizeDependent() {
   for (ScatteringTechnique* technique : techniques) technique->destroySizeDependent(gpu);
+  for (auto& light : additional) {
+    if (light) {
+      for (ScatteringTechnique* technique : light->all()) technique->destroySizeDependent(gpu);
+    }
+  }
+  destroyImage(gpu, lightTarget);
   destroyImage(gpu, debugImage);
   destroyImage(gpu, aovTarget);
   retiredTargets.destroyAll([&](OwnedImage& image) { destroyImage(gpu, image); });
@@ -248,6 +329,13 @@ void Context::Impl::destroySizeDependent() {
 void Context::Impl::destroyAll() {
   if (gpu.device == VK_NULL_HANDLE) return;
   destroySizeDependent();
+  for (auto it = additional.rbegin(); it != additional.rend(); ++it) {
+    if (!*it) continue;
+    for (ScatteringTechnique* technique : (*it)->all()) technique->destroy(gpu);
+    for (MappedBuffer& buffer : (*it)->constants) destroyBuffer(gpu, buffer);
+    it->reset();
+  }
+  lightSum.destroy(gpu);
   composite.destroy(gpu);
   for (auto it = techniques.rbegin(); it != techniques.rend(); ++it) (*it)->destroy(gpu);
   timer.destroy(gpu);
@@ -395,10 +483,27 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   const Profile profile = frame.profile == Profile::Auto
                               ? autoProfile.choose(stats.frameIndex, frame.autoBudgetMilliseconds)
                               : frame.profile;
-  const ProfileChoice& choice = profileChoice(profile, lightClassOf(frame.light.type));
-  const Technique requested = frame.technique != Technique::None ? frame.technique : choice.technique;
-  const TechniqueSelection selection =
-      selectTechnique({requested, frame.light.type, !frame.lightColor.empty(), extent, setup.scatters});
+
+  // Per light: the technique its kind's profile row (or the frame) asks for, and what runs. The
+  // frame's first light that runs (FrameDesc::light unless it is skipped) is the one the stats'
+  // frame-level fields, the note and the debug view describe.
+  const std::size_t lightCount = setup.lights.size();
+  std::vector<const ProfileChoice*> choices(lightCount);
+  std::vector<Technique> requestedTechniques(lightCount);
+  std::vector<TechniqueSelection> selections(lightCount);
+  std::size_t lead = lightCount;
+  for (std::size_t i = 0; i < lightCount; ++i) {
+    const LightSetup& light = setup.lights[i];
+    choices[i] = &profileChoice(profile, lightClassOf(light.light.type));
+    requestedTechniques[i] = frame.technique != Technique::None ? frame.technique : choices[i]->technique;
+    selections[i] = selectTechnique({requestedTechniques[i], light.light.type, !light.lightColor.empty(), extent,
+                                     light.skipped == LightSkipped::No});
+    if (lead == lightCount && selections[i].technique != Technique::None) lead = i;
+  }
+  if (lead == lightCount) lead = 0;
+  const ProfileChoice& choice = *choices[lead];
+  const Technique requested = requestedTechniques[lead];
+  const TechniqueSelection selection = selections[lead];
   const Technique technique = selection.technique;
   std::string note = frame.technique != Technique::None ? std::string("technique set by the frame: ") +
                                                               to_string(frame.technique)
@@ -424,18 +529,40 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   // iterations (docs/REFERENCE.md "Loop budget on lavapipe"). A point light's texel walk takes about
   // two per texel step and a ray passing the light crosses up to six times the map's side: within
   // the budget up to 4096², not beyond. Said, not hidden: the result is wrong there.
-  const bool overLoopLimit = gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-                             frame.light.type == LightType::Point &&
-                             (technique == Technique::Reference || technique == Technique::Epipolar) &&
-                             !frame.shadowMaps.empty() &&
-                             frame.shadowMaps[0].depth.extent.width > kCpuDriverPointLightMapLimit;
+  bool overLoopLimit = false;
+  for (std::size_t i = 0; i < lightCount; ++i) {
+    const LightSetup& light = setup.lights[i];
+    overLoopLimit = overLoopLimit ||
+                    (gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && light.light.type == LightType::Point &&
+                     (selections[i].technique == Technique::Reference || selections[i].technique == Technique::Epipolar) &&
+                     !light.shadowMaps.empty() && light.shadowMaps[0].depth.extent.width > kCpuDriverPointLightMapLimit);
+  }
   if (overLoopLimit) {
     note += "; CPU driver: a point light's texel walk with maps above " + std::to_string(kCpuDriverPointLightMapLimit) +
             "^2 can exceed lavapipe's 65,535 loop iterations per invocation and come out too dark";
   }
-  if (Outcome o = ensurePipelines(technique, frame); !o) return fail(o);
-  ScatteringTechnique* const runs = techniqueFor(technique);  // null when nothing scatters
-  const bool drawsDebugView = frame.debugView != DebugView::None && runs != nullptr && runs->drawsDebugViews();
+
+  // The lights that run, each with the frame as it sees it; the lead light draws the debug view.
+  std::vector<LightRun> runs;
+  for (std::size_t i = 0; i < lightCount; ++i) {
+    if (selections[i].technique == Technique::None) continue;
+    const LightSetup& light = setup.lights[i];
+    LightRun run{i, frame, nullptr};
+    run.frame.light = light.light;
+    run.frame.shadowMaps = light.shadowMaps;
+    run.frame.lightColor = light.lightColor;
+    run.frame.additionalLights = {};
+    if (i != lead) run.frame.debugView = DebugView::None;
+    if (Outcome o = ensurePipelines(selections[i].technique, run.frame); !o) return fail(o);
+    if (i > 0) {
+      if (Outcome o = ensureAdditionalLight(i); !o) return fail(o);
+    }
+    run.technique = instanceFor(i, selections[i].technique);
+    runs.push_back(run);
+  }
+  ScatteringTechnique* const leadTechnique = runs.empty() ? nullptr : runs.front().technique;
+  const bool drawsDebugView =
+      frame.debugView != DebugView::None && leadTechnique != nullptr && leadTechnique->drawsDebugViews();
   if (frame.debugView != DebugView::None && !drawsDebugView) note += "; debug view: drawn by the epipolar technique only";
   if (drawsDebugView && debugImage.image == VK_NULL_HANDLE) {
     if (Outcome o = createImage(gpu, kTargetFormat, extent, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
@@ -445,28 +572,56 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     report(Severity::Info, "debug view image allocated");
   }
-  // The L_in target at the technique's resolution; a frame without one keeps the current target.
-  if (runs != nullptr) {
-    if (Outcome o = useResolution(runs->resolution(frame, choice)); !o) return fail(o);
+  // The L_in target at the lead technique's resolution, which every light's technique runs at; a
+  // frame without one keeps the current target.
+  if (leadTechnique != nullptr) {
+    if (Outcome o = useResolution(leadTechnique->resolution(runs.front().frame, choice)); !o) return fail(o);
   }
   retiredTargets.release(stats.frameIndex, desc.maxFramesInFlight + kSpareTargetFrames,
                          [&](OwnedImage& image) { destroyImage(gpu, image); });
   for (ScatteringTechnique* t : techniques) t->releaseRetired(gpu, stats.frameIndex, desc.maxFramesInFlight);
+  for (auto& light : additional) {
+    if (light) {
+      for (ScatteringTechnique* t : light->all()) t->releaseRetired(gpu, stats.frameIndex, desc.maxFramesInFlight);
+    }
+  }
   const bool reduced = resolution != ScatteringResolution::Full;
   if (reduced && aovTarget.image == VK_NULL_HANDLE &&
       (!frame.scatteringOutput.empty() || !frame.transmittanceOutput.empty())) {
     if (Outcome o = createImage(gpu, kTargetFormat, extent, kTargetUsage, aovTarget); !o) return fail(o);
     report(Severity::Info, "full-resolution AOV image allocated (the L_in target is at reduced resolution)");
   }
-  setup.constants.target_extent = glm::uvec2(scattering.extent.width, scattering.extent.height);
-  setup.constants.target_stride = static_cast<std::uint32_t>(resolution);
-  setup.constants.target_offset = setup.constants.target_stride / 2;
-  TechniqueReport techniqueReport;
-  if (runs != nullptr) {
-    const FrameInputs inputs{frame, choice, extent, scattering.extent, slot, stats.frameIndex, desc.maxFramesInFlight};
-    if (Outcome o = runs->prepare(gpu, inputs, techniqueReport); !o) return fail(o);
-    note += techniqueReport.note;
+  if (runs.size() > 1 && (lightTarget.extent.width != scattering.extent.width ||
+                          lightTarget.extent.height != scattering.extent.height)) {
+    OwnedImage next;
+    if (Outcome o = createImage(gpu, kTargetFormat, scattering.extent, kTargetUsage, next); !o) return fail(o);
+    if (lightTarget.image != VK_NULL_HANDLE) retiredTargets.retire(stats.frameIndex, lightTarget);
+    lightTarget = next;
+    report(Severity::Info, "light target allocated (several lights run)");
+  }
+  for (LightSetup& light : setup.lights) {
+    light.constants.target_extent = glm::uvec2(scattering.extent.width, scattering.extent.height);
+    light.constants.target_stride = static_cast<std::uint32_t>(resolution);
+    light.constants.target_offset = light.constants.target_stride / 2;
+  }
+  std::vector<TechniqueReport> reports(lightCount);
+  for (const LightRun& run : runs) {
+    const FrameInputs inputs{run.frame, *choices[run.index], extent, scattering.extent, slot, stats.frameIndex,
+                             desc.maxFramesInFlight};
+    if (Outcome o = run.technique->prepare(gpu, inputs, reports[run.index]); !o) return fail(o);
+  }
+  if (leadTechnique != nullptr) {
+    note += reports[lead].note;
     if (reduced) note += std::string("; L_in at ") + to_string(resolution) + " resolution, upsampled by the composite";
+  }
+  if (lightCount > 1) {
+    std::string summary = "; " + std::to_string(lightCount) + " lights:";
+    for (std::size_t i = 0; i < lightCount; ++i) {
+      summary += std::string(i == 0 ? " " : ", ") +
+                 (setup.lights[i].skipped != LightSkipped::No ? std::string("skipped (") + to_string(setup.lights[i].skipped) + ")"
+                                                               : std::string(to_string(selections[i].technique)));
+    }
+    note += summary;
   }
 
   stats.requestedProfile = frame.profile;
@@ -474,8 +629,19 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   stats.requestedTechnique = requested;
   stats.techniqueSetByFrame = frame.technique != Technique::None;
   stats.techniqueChange = selection.change;
-  stats.epipolar = techniqueReport.epipolar;
-  stats.prefiltered = techniqueReport.prefiltered;
+  stats.epipolar = reports[lead].epipolar;
+  stats.prefiltered = reports[lead].prefiltered;
+  stats.lights.resize(lightCount);
+  for (std::size_t i = 0; i < lightCount; ++i) {
+    LightStats& l = stats.lights[i];
+    l.type = setup.lights[i].light.type;
+    l.requestedTechnique = requestedTechniques[i];
+    l.technique = selections[i].technique;
+    l.techniqueChange = selections[i].change;
+    l.skipped = setup.lights[i].skipped;
+    l.epipolar = reports[i].epipolar;
+    l.prefiltered = reports[i].prefiltered;
+  }
   stats.pointLightWalkOverCpuLoopLimit = overLoopLimit;
   stats.debugViewDrawn = drawsDebugView;
   stats.scatteringResolution = resolution;
@@ -483,7 +649,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   gpu.dispatches = 0;
   gpu.barriers = 0;
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
-  // Counts the slot's previous frame left, whichever technique runs now.
+  // Counts the slot's previous frame left, whichever technique runs now (the first light's).
   for (ScatteringTechnique* t : techniques) t->readBack(slot, stats);
 
   if (!setup.attenuates) {
@@ -493,6 +659,12 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.composite = CompositePath::None;
     stats.epipolar.reset();
     stats.prefiltered.reset();
+    for (LightStats& l : stats.lights) {
+      l.technique = Technique::None;
+      l.techniqueChange = TechniqueChange::NoExtinction;
+      l.epipolar.reset();
+      l.prefiltered.reset();
+    }
     stats.debugViewDrawn = false;
     stats.techniqueNote = techniqueChangeNote(TechniqueChange::NoExtinction);
     recordAovs(cmd, slot, frame, false);
@@ -500,7 +672,11 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.technique = technique;  // None when nothing scatters
     stats.composite = computeComposite ? CompositePath::Compute : CompositePath::Fragment;
     stats.techniqueNote = note;
-    std::memcpy(constants[slot].mapped, &setup.constants, sizeof(setup.constants));
+    for (std::size_t i = 0; i < lightCount; ++i) {
+      if (i == 0 || selections[i].technique != Technique::None) {
+        std::memcpy(mappedConstantsFor(i, slot), &setup.lights[i].constants, sizeof(gpu::FrameConstants));
+      }
+    }
     recordScattering(cmd, slot, frame, runs);
     scatteringUsed = true;
     recordAovs(cmd, slot, frame, true);
@@ -531,14 +707,14 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
 }
 
 void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                                     ScatteringTechnique* technique) {
+                                     const std::vector<LightRun>& runs) {
   const VkImageLayout depthLayout = sampledDepthLayout(frame.depth.layout);
-  // The technique's releases and the back buffer's acquisition for the composite: one barrier.
+  // The techniques' releases and the back buffer's acquisition for the composite: one barrier.
   BarrierBatch release;
   // The depth buffer stays acquired until the T AOV (Impl::record releases it).
   imageBarrier(gpu, cmd, frame.depth.image, barrierAspect(frame.depth.format), frame.depth.arrayLayer,
                hostBefore(frame.depth), {depthLayout, kDepthReaders, VK_ACCESS_SHADER_READ_BIT});
-  if (technique == nullptr) {
+  if (runs.empty()) {
     // Nothing scatters: L_in = 0 without a technique (the previous frame's reads finish first).
     const ImageUse transferWrite{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
                                  VK_ACCESS_TRANSFER_WRITE_BIT};
@@ -554,7 +730,27 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                  {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers,
                   VK_ACCESS_SHADER_READ_BIT});
   } else {
-    recordTechnique(cmd, slot, frame, *technique, depthLayout, release);
+    // The first light writes the L_in target; each later one its own target, then adds it.
+    const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      recordTechnique(cmd, slot, runs[k], k == 0 ? scattering : lightTarget, depthLayout, release);
+      if (k == 0) continue;
+      BarrierBatch toSum;
+      toSum.image(lightTarget.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                  {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
+                  {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_READ_BIT});
+      toSum.image(scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                  {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
+                  {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT});
+      timer.beginPass(gpu, cmd, "light_sum");
+      toSum.record(gpu, cmd);
+      lightSum.record(gpu, cmd, slot * (kMaxLights - 1) + static_cast<std::uint32_t>(k - 1), scattering.view,
+                      lightTarget.view, scattering.extent);
+      timer.endPass(gpu, cmd);
+      stats.passesRecorded.emplace_back("light_sum");
+    }
+    release.image(scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
+                  {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, VK_ACCESS_SHADER_READ_BIT});
   }
 
   // Composite into the back buffer: in place by compute where it is a storage image, else blended.
@@ -588,11 +784,13 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                {attachment, output, VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT}, hostAfter(frame.color));
 }
 
-// The technique's passes into the L_in target, left for the composite's fragment shader to read.
+// One light's technique's passes into `target`, left in GENERAL for the caller to hand on.
 // The depth buffer is acquired (recordScattering), in `depthLayout`.
-void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame,
-                                    ScatteringTechnique& technique, VkImageLayout depthLayout, BarrierBatch& release) {
+void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const LightRun& run,
+                                    const OwnedImage& target, VkImageLayout depthLayout, BarrierBatch& release) {
   const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  const FrameDesc& frame = run.frame;
+  ScatteringTechnique& technique = *run.technique;
 
   // Each pass's timestamps are written before its barriers: a CPU driver (lavapipe) takes a
   // timestamp when it next flushes, and a barrier flushes, so the stamps then bracket the work.
@@ -601,16 +799,16 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
   // The technique's inputs and target in one barrier. Tyndall's target: the previous frame's reads
   // must finish before it is overwritten; the old contents are discarded.
   BarrierBatch acquire;
-  acquire.image(scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0},
+  acquire.image(target.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0},
                 {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
 
   // Host inputs: depth buffer and shadow maps, sampled by the compute pass.
   ScatteringBindings bindings;
-  bindings.constants = constants[slot].buffer;
+  bindings.constants = constantsFor(run.index, slot);
   bindings.depth = frame.depth.view;
   bindings.depthLayout = depthLayout;
   bindings.light = frame.light.type;
-  bindings.scattering = scattering.view;
+  bindings.scattering = target.view;
   // The light-colour texture, or the white texel (cleared once, in the first frame that needs it).
   if (!frame.lightColor.empty()) {
     bindings.lightColor = frame.lightColor.view;
@@ -648,12 +846,12 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
                   {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT});
   }
   acquire.record(gpu, cmd);
-  technique.record(gpu, cmd, RecordTarget{slot, bindings, scattering.extent, timer, stats.passesRecorded});
+  technique.record(gpu, cmd, RecordTarget{slot, bindings, target.extent, timer, stats.passesRecorded});
   if (singlePass != nullptr) {
     timer.endPass(gpu, cmd);
     stats.passesRecorded.emplace_back(singlePass);
   }
-  // The inputs go back to the host and the target to the composite, with the caller's barriers.
+  // The inputs go back to the host with the caller's barriers.
   if (!frame.lightColor.empty()) {
     release.image(frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
                   {bindings.lightColorLayout, compute, 0}, hostAfter(frame.lightColor));
@@ -663,8 +861,6 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
     release.image(map.image, barrierAspect(map.format), map.arrayLayer, {bindings.shadowLayouts[i], compute, 0},
                   hostAfter(map));
   }
-  release.image(scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
-                {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, VK_ACCESS_SHADER_READ_BIT});
 }
 
 

@@ -118,7 +118,9 @@ Outcome checkOutputImage(const Gpu& gpu, const ImageRef& image, VkExtent2D exten
   return {};
 }
 
-Outcome checkLight(const LightDesc& light, std::uint32_t shadowMapCount) {
+// `prefix` names the light in messages: "" for FrameDesc::light, "additionalLights[i]." after it.
+Outcome checkLight(const LightDesc& light, std::uint32_t shadowMapCount, const std::string& prefix) {
+  auto invalid = [&](const std::string& message) { return tyndall::invalid(prefix + message); };
   if (!finite(light.color) || !nonNegative(light.color)) return invalid("light.color must be finite and >= 0");
   if (!std::isfinite(light.intensity) || light.intensity < 0.0f) return invalid("light.intensity must be finite and >= 0");
   const bool needsDirection = light.type == LightType::Directional || light.type == LightType::Spot;
@@ -133,16 +135,16 @@ Outcome checkLight(const LightDesc& light, std::uint32_t shadowMapCount) {
     const float outer = light.outerConeRadians;
     if (!std::isfinite(inner) || !std::isfinite(outer) || inner < 0.0f || inner > outer ||
         outer >= 1.5707963f) {
-      return invalid("light cone angles must satisfy 0 <= inner <= outer < pi/2");
+      return invalid("light.innerConeRadians/outerConeRadians must satisfy 0 <= inner <= outer < pi/2");
     }
   }
   switch (light.type) {
     case LightType::Directional:
     case LightType::Spot:
-      if (shadowMapCount != 1) return invalid("a directional or spot light needs exactly 1 shadow map");
+      if (shadowMapCount != 1) return invalid("shadowMaps: a directional or spot light needs exactly 1 shadow map");
       break;
     case LightType::Point:
-      if (shadowMapCount != 6) return invalid("a point light needs exactly 6 shadow maps (cube faces)");
+      if (shadowMapCount != 6) return invalid("shadowMaps: a point light needs exactly 6 shadow maps (cube faces)");
       break;
     default:
       return invalid("light.type is not a LightType");
@@ -165,6 +167,53 @@ Outcome checkMedium(std::span<const MediumComponent> medium) {
     if (!std::isfinite(c.g) || c.g <= -1.0f || c.g >= 1.0f) return invalid(name + ".g must be in (-1, 1)");
   }
   return {};
+}
+
+// A light's colour texture and shadow maps; `prefix` as for checkLight.
+Outcome checkLightImages(const Gpu& gpu, const LightSetup& light, const std::string& prefix) {
+  if (!light.lightColor.empty()) {
+    if (Outcome o = checkImage(light.lightColor, (prefix + "lightColor").c_str()); !o) return o;
+    if (isDepthFormat(light.lightColor.format) ||
+        (gpu.optimalFeatures(light.lightColor.format) & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) == 0) {
+      return failure(Status::UnsupportedFormat, prefix + "lightColor needs a colour format with linear filtering, got VkFormat " +
+                                                    std::to_string(static_cast<int>(light.lightColor.format)));
+    }
+    if (light.light.type == LightType::Point) {
+      return failure(Status::UnsupportedFeature, prefix + "lightColor: a point light has no single map to lay it over");
+    }
+  }
+  const std::uint32_t mapSize = light.shadowMaps.empty() ? 0 : light.shadowMaps[0].depth.extent.width;
+  for (std::size_t i = 0; i < light.shadowMaps.size(); ++i) {
+    const ShadowMapDesc& map = light.shadowMaps[i];
+    const std::string name = prefix + "shadowMaps[" + std::to_string(i) + "]";
+    if (Outcome o = checkSampledDepth(gpu, map.depth, (name + ".depth").c_str()); !o) return o;
+    if (map.depth.extent.width != map.depth.extent.height || map.depth.extent.width != mapSize) {
+      return invalid(name + ".depth must be square and all shadow maps the same size");
+    }
+    if (!finite(map.worldToShadowClip) || !invertible(toMat(map.worldToShadowClip))) {
+      return invalid(name + ".worldToShadowClip must be finite and invertible");
+    }
+  }
+  return {};
+}
+
+// This light's fields of the constants.
+void setLightConstants(const LightSetup& l, gpu::FrameConstants& k) {
+  for (std::size_t i = 0; i < l.shadowMaps.size(); ++i) {
+    k.world_to_shadow[i] = glm::make_mat4(l.shadowMaps[i].worldToShadowClip.data());
+  }
+  const LightDesc& light = l.light;
+  const glm::vec3 direction =
+      light.type == LightType::Point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::vec3(glm::normalize(toVec(light.direction)));
+  k.light_position = glm::vec3(toVec(light.position));
+  k.light_direction = direction;
+  k.cos_outer_cone = std::cos(light.outerConeRadians);
+  k.light_radiance = glm::vec3(toVec(light.color)) * light.intensity;
+  k.cos_inner_cone = std::cos(light.innerConeRadians);
+  k.light_type = static_cast<std::uint32_t>(light.type);
+  k.shadow_map_count = static_cast<std::uint32_t>(l.shadowMaps.size());
+  k.shadow_map_size = l.shadowMaps.empty() ? 0 : l.shadowMaps[0].depth.extent.width;
+  k.has_light_color = l.lightColor.empty() ? 0u : 1u;
 }
 
 }  // namespace
@@ -202,7 +251,7 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
     return invalid("camera.infiniteFarSkyDistance must be finite and > 0 with an infinite far plane");
   }
 
-  if (Outcome o = checkLight(frame.light, static_cast<std::uint32_t>(frame.shadowMaps.size())); !o) return o;
+  if (Outcome o = checkLight(frame.light, static_cast<std::uint32_t>(frame.shadowMaps.size()), ""); !o) return o;
   if (Outcome o = checkMedium(frame.medium); !o) return o;
 
   // Images.
@@ -224,45 +273,30 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
     return invalid("debugView needs a debugOutput image");
   }
   if (Outcome o = checkOutputImage(gpu, frame.debugOutput, outputExtent, "debugOutput"); !o) return o;
-  if (!frame.lightColor.empty()) {
-    if (Outcome o = checkImage(frame.lightColor, "lightColor"); !o) return o;
-    if (isDepthFormat(frame.lightColor.format) ||
-        (gpu.optimalFeatures(frame.lightColor.format) & VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) == 0) {
-      return failure(Status::UnsupportedFormat, "lightColor needs a colour format with linear filtering, got VkFormat " +
-                                                    std::to_string(static_cast<int>(frame.lightColor.format)));
-    }
-    if (frame.light.type == LightType::Point) {
-      return failure(Status::UnsupportedFeature, "lightColor: a point light has no single map to lay it over");
-    }
+  // Lights: the first, then the additional ones, each with its maps and colour texture.
+  if (frame.additionalLights.size() > kMaxLights - 1) {
+    return invalid("additionalLights holds " + std::to_string(frame.additionalLights.size()) + " lights; at most " +
+                   std::to_string(kMaxLights - 1) + " (kMaxLights with FrameDesc::light)");
   }
-  const std::uint32_t mapSize = frame.shadowMaps.empty() ? 0 : frame.shadowMaps[0].depth.extent.width;
-  for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
-    const ShadowMapDesc& map = frame.shadowMaps[i];
-    const std::string name = "shadowMaps[" + std::to_string(i) + "]";
-    if (Outcome o = checkSampledDepth(gpu, map.depth, (name + ".depth").c_str()); !o) return o;
-    if (map.depth.extent.width != map.depth.extent.height || map.depth.extent.width != mapSize) {
-      return invalid(name + ".depth must be square and all shadow maps the same size");
+  out.lights.push_back({{}, frame.light, frame.shadowMaps, frame.lightColor, LightSkipped::No});
+  for (const LightInput& light : frame.additionalLights) {
+    out.lights.push_back({{}, light.light, light.shadowMaps, light.lightColor, LightSkipped::No});
+  }
+  for (std::size_t i = 0; i < out.lights.size(); ++i) {
+    const std::string prefix = i == 0 ? std::string() : "additionalLights[" + std::to_string(i - 1) + "].";
+    const LightSetup& l = out.lights[i];
+    if (i > 0) {  // the first light was checked with the camera
+      if (Outcome o = checkLight(l.light, static_cast<std::uint32_t>(l.shadowMaps.size()), prefix); !o) return o;
     }
-    if (!finite(map.worldToShadowClip) || !invertible(toMat(map.worldToShadowClip))) {
-      return invalid(name + ".worldToShadowClip must be finite and invertible");
-    }
+    if (Outcome o = checkLightImages(gpu, l, prefix); !o) return o;
   }
 
   // Constants.
-  gpu::FrameConstants& k = out.constants;
-  k.view_to_world = glm::mat4(glm::inverse(toMat(frame.camera.view)));
-  k.clip_to_view = glm::mat4(glm::inverse(projection));
-  for (std::size_t i = 0; i < frame.shadowMaps.size(); ++i) {
-    k.world_to_shadow[i] = glm::make_mat4(frame.shadowMaps[i].worldToShadowClip.data());
-  }
-  const LightDesc& light = frame.light;
-  const glm::vec3 direction =
-      light.type == LightType::Point ? glm::vec3(0.0f, -1.0f, 0.0f) : glm::vec3(glm::normalize(toVec(light.direction)));
-  k.light_position = glm::vec3(toVec(light.position));
-  k.light_direction = direction;
-  k.cos_outer_cone = std::cos(light.outerConeRadians);
-  k.light_radiance = glm::vec3(toVec(light.color)) * light.intensity;
-  k.cos_inner_cone = std::cos(light.innerConeRadians);
+  gpu::FrameConstants k{};
+  const glm::dmat4 viewToWorld = glm::inverse(toMat(frame.camera.view));
+  const glm::dmat4 clipToView = glm::inverse(projection);
+  k.view_to_world = glm::mat4(viewToWorld);
+  k.clip_to_view = glm::mat4(clipToView);
 
   glm::vec3 extinction(0.0f);
   glm::vec3 scattering(0.0f);
@@ -280,18 +314,30 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   k.far_ndc_depth = out.projection.farNdc;
   k.far_at_infinity = out.projection.infiniteFar ? 1u : 0u;
   k.sky_distance = frame.camera.infiniteFarSkyDistance;
-  k.light_type = static_cast<std::uint32_t>(light.type);
   k.medium_component_count = static_cast<std::uint32_t>(frame.medium.size());
-  k.shadow_map_count = static_cast<std::uint32_t>(frame.shadowMaps.size());
-  k.shadow_map_size = mapSize;
-  const bool lightOn = light.intensity > 0.0f && glm::length(glm::vec3(toVec(light.color))) > 0.0f;
-  out.scatters = lightOn && glm::length(scattering) > 0.0f;
   out.attenuates = glm::length(extinction) > 0.0f;
   k.output_extent = glm::uvec2(outputExtent.width, outputExtent.height);
   k.target_extent = k.output_extent;  // full resolution until the context sets the technique's
   k.target_stride = 1;
   k.target_offset = 0;
-  k.has_light_color = frame.lightColor.empty() ? 0u : 1u;
+  // Each light: the shared constants with its own fields, and whether it has anything to add.
+  const bool mediumScatters = glm::length(scattering) > 0.0f;
+  for (LightSetup& l : out.lights) {
+    l.constants = k;
+    setLightConstants(l, l.constants);
+    const LightDesc& light = l.light;
+    if (!(light.intensity > 0.0f && glm::length(glm::vec3(toVec(light.color))) > 0.0f)) {
+      l.skipped = LightSkipped::Off;
+    } else if (!mediumScatters) {
+      l.skipped = LightSkipped::NothingScatters;
+    } else if (light.type == LightType::Spot &&
+               spotConeMissesView(viewToWorld, clipToView, toVec(light.position),
+                                  glm::normalize(toVec(light.direction)), light.outerConeRadians)) {
+      l.skipped = LightSkipped::OutsideView;
+    }
+    out.scatters = out.scatters || l.skipped == LightSkipped::No;
+  }
+  out.constants = out.lights.front().constants;
   return {};
 }
 

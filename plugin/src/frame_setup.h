@@ -5,12 +5,26 @@
 #include "common/shared_constants.h"
 #include "gpu.h"
 
+#include <span>
+#include <vector>
+
 namespace tyndall {
 
+/// One light of the frame: FrameDesc::light, or one of FrameDesc::additionalLights with the frame's
+/// other inputs.
+struct LightSetup {
+  gpu::FrameConstants constants{};  ///< the frame's constants with this light's fields
+  LightDesc light;
+  std::span<const ShadowMapDesc> shadowMaps;
+  ImageRef lightColor;
+  LightSkipped skipped = LightSkipped::No;  ///< why it records nothing (Off, OutsideView, NothingScatters)
+};
+
 struct FrameSetup {
-  gpu::FrameConstants constants{};
+  gpu::FrameConstants constants{};  ///< the first light's (lights[0].constants)
+  std::vector<LightSetup> lights;   ///< FrameDesc::light, then FrameDesc::additionalLights
   ProjectionInfo projection;
-  bool scatters = false;    ///< some σ_s > 0: there is in-scattering to compute
+  bool scatters = false;    ///< some light is not skipped: there is in-scattering to compute
   bool attenuates = false;  ///< some σ_t > 0: the back buffer changes at all
 };
 

@@ -64,4 +64,14 @@ const char* to_string(TechniqueChange change) noexcept {
   return "unknown";
 }
 
+const char* to_string(LightSkipped reason) noexcept {
+  switch (reason) {
+    case LightSkipped::No: return "no";
+    case LightSkipped::Off: return "off";
+    case LightSkipped::OutsideView: return "outside-view";
+    case LightSkipped::NothingScatters: return "nothing-scatters";
+  }
+  return "unknown";
+}
+
 }  // namespace tyndall

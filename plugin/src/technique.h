@@ -73,6 +73,10 @@ class ScatteringTechnique {
   [[nodiscard]] virtual ScatteringResolution resolution(const FrameDesc& /*frame*/, const ProfileChoice& /*choice*/) const {
     return ScatteringResolution::Full;
   }
+  /// Records with `owner`'s pipelines from now on, compiling none of its own: an additional light's
+  /// instance needs its own descriptor sets, buffers and textures, not its own pipelines. `owner`,
+  /// the same technique's first-light instance, compiles them and outlives this one.
+  virtual void sharePipelinesOf(ScatteringTechnique& owner) = 0;
   /// Compiles every pipeline (context creation with PipelineCreation::AtCreate, Context::warmUp).
   virtual Outcome createPipelines(const Gpu& gpu) = 0;
   /// Compiles what this frame needs and is not compiled yet; `compiled` says whether anything was.

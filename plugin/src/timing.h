@@ -14,7 +14,7 @@ namespace tyndall {
 class GpuTimer {
  public:
   /// Up to this many timed passes per frame; later passes run untimed (and unlisted in the timings).
-  static constexpr std::uint32_t kMaxPasses = 32;
+  static constexpr std::uint32_t kMaxPasses = 160;  // kMaxLights lights of a dozen passes each, and the shared ones
 
   Outcome create(const Gpu& gpu, std::uint32_t slots, std::uint32_t queueFamilyIndex);
   void destroy(const Gpu& gpu);

@@ -239,9 +239,14 @@ class Sweep {
     } else {
       unitsDone_ += options_.warmUpFrames + options_.frames + 1;
     }
+    // The prefiltered technique takes directional lights only: every light of the scene must be one.
+    bool onlyDirectional = scene.light.type == host::LightType::Directional;
+    for (const host::Light& light : scene.additionalLights) {
+      onlyDirectional = onlyDirectional && light.type == host::LightType::Directional;
+    }
     std::vector<std::optional<std::size_t>> measured;
     for (const Configuration& config : options_.configurations) {
-      if (config.technique == Technique::Prefiltered && scene.light.type != host::LightType::Directional) {
+      if (config.technique == Technique::Prefiltered && !onlyDirectional) {
         measured.emplace_back();
         unitsDone_ += options_.warmUpFrames + options_.frames + 1;
         continue;

@@ -116,9 +116,22 @@ void TyndallEffect::onMessage(Severity severity, const char* message, void* user
 FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, FrameStorage& storage) {
   const host::Scene& scene = *inputs.scene;
   storage.medium = toMedium(scene.medium);
-  storage.shadowMaps.clear();
-  for (const host::HostShadowMap& map : inputs.shadowMaps) {
-    storage.shadowMaps.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip)});
+  const auto toShadowMaps = [](const std::vector<host::HostShadowMap>& maps) {
+    std::vector<ShadowMapDesc> out;
+    for (const host::HostShadowMap& map : maps) out.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip)});
+    return out;
+  };
+  storage.shadowMaps = toShadowMaps(inputs.shadowMaps);
+  // Every light's maps first: additionalLights' spans point into them, so they must not move after.
+  storage.additionalShadowMaps.clear();
+  for (const host::LightInputs& light : inputs.additionalLights) {
+    storage.additionalShadowMaps.push_back(toShadowMaps(light.shadowMaps));
+  }
+  storage.additionalLights.clear();
+  for (std::size_t i = 0; i < inputs.additionalLights.size(); ++i) {
+    const host::LightInputs& light = inputs.additionalLights[i];
+    storage.additionalLights.push_back(
+        {toLightDesc(*light.light), storage.additionalShadowMaps[i], toImageRef(light.lightColor)});
   }
 
   FrameDesc frame;
@@ -133,6 +146,7 @@ FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, 
   frame.scatteringOutput = toImageRef(inputs.aovScattering);
   frame.transmittanceOutput = toImageRef(inputs.aovTransmittance);
   frame.lightColor = toImageRef(inputs.lightColor);
+  frame.additionalLights = storage.additionalLights;
   frame.profile = profile;
   return frame;
 }

@@ -70,6 +70,8 @@ std::vector<MediumComponent> toMedium(const std::vector<host::MediumComponent>& 
 struct FrameStorage {
   std::vector<MediumComponent> medium;
   std::vector<ShadowMapDesc> shadowMaps;
+  std::vector<std::vector<ShadowMapDesc>> additionalShadowMaps;  ///< per additional light
+  std::vector<LightInput> additionalLights;
 };
 /// The FrameDesc an engine would build from its per-frame data.
 FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, FrameStorage& storage);

@@ -40,6 +40,11 @@ TYN_CONST uint TYN_COMPOSITE_BINDING_COUNT = 3u;
 // The compute composite's back buffer (storage, read and written in place).
 TYN_CONST uint TYN_COMPOSITE_BINDING_COLOR = 3u;  // also the L_in AOV upsample's output
 TYN_CONST uint TYN_COMPOSITE_COMPUTE_BINDING_COUNT = 4u;
+// The light sum's (composite/light_sum.comp, light_sum_pass.cpp): an additional light's L_in added
+// to the frame's.
+TYN_CONST uint TYN_LIGHT_SUM_BINDING_SUM = 0u;
+TYN_CONST uint TYN_LIGHT_SUM_BINDING_LIGHT = 1u;
+TYN_CONST uint TYN_LIGHT_SUM_BINDING_COUNT = 2u;
 
 // One component of the medium (std140: 32 bytes, C++ the same).
 struct MediumComponentConstants {

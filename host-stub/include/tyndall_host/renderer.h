@@ -57,7 +57,8 @@ enum class DepthConvention { Standard, Reverse };
 struct RenderSettings {
   std::uint32_t width = 640;
   std::uint32_t height = 360;
-  std::uint32_t shadowMapSize = 0;  ///< 0: the scene's shadowMap.size
+  /// Every light's shadow-map size. 0: each light's own shadowMap.size, else the scene's.
+  std::uint32_t shadowMapSize = 0;
   DepthConvention depth = DepthConvention::Standard;
   bool infiniteFar = false;         ///< projection with the far plane at infinity
   std::uint32_t framesInFlight = 2; ///< 1..16; each slot has its own command buffer, fence and images
@@ -89,6 +90,13 @@ struct HostShadowMap {
   glm::mat4 worldToShadowClip{1.0f};
 };
 
+/// A light after the scene's first (Scene::additionalLights), as effects see it.
+struct LightInputs {
+  const Light* light = nullptr;           ///< into PostProcessInputs::scene->additionalLights
+  std::vector<HostShadowMap> shadowMaps;  ///< 1 (directional, spot) or 6 (point), at the light's size
+  HostImage lightColor;                   ///< as PostProcessInputs::lightColor, for this light
+};
+
 /// What the host hands each post-process effect, per frame.
 struct PostProcessInputs {
   std::uint64_t frameIndex = 0;
@@ -96,7 +104,7 @@ struct PostProcessInputs {
   glm::mat4 view{1.0f};              ///< world → view (lookAt)
   glm::mat4 projection{1.0f};        ///< Vulkan clip (depth [0,1]), y flipped so image row 0 is the top
   const Scene* scene = nullptr;      ///< light and medium come from here
-  std::vector<HostShadowMap> shadowMaps;  ///< 1 (directional, spot) or 6 (point)
+  std::vector<HostShadowMap> shadowMaps;  ///< scene->light's: 1 (directional, spot) or 6 (point)
   HostImage depth;                   ///< D32_SFLOAT, DEPTH_STENCIL_ATTACHMENT_OPTIMAL
   HostImage color;                   ///< back buffer, COLOR_ATTACHMENT_OPTIMAL, with its usage
   HostImage aovScattering;           ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages
@@ -105,6 +113,8 @@ struct PostProcessInputs {
   /// The scene light's colour texture (stained glass over shadow map 0's square), R8G8B8A8_SRGB,
   /// SHADER_READ_ONLY_OPTIMAL; empty when the light has none.
   HostImage lightColor;
+  /// The scene's second and later lights, in order (empty for a scene with one light).
+  std::vector<LightInputs> additionalLights;
 };
 
 /// A pass of the post-process stack, inserted exactly as an engine would insert one.

@@ -2,6 +2,7 @@
 // Everything here is double precision: the CPU analytic reference uses the same structures.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -34,6 +35,9 @@ struct Light {
   /// Optional "colorTexture": a PNG laid over the light's shadow map (stained glass), resolved
   /// against the scene file's folder; directional and spot lights. Empty: none.
   std::filesystem::path colorTexture;
+  /// Optional "shadowMap": {"size": N}: this light's shadow-map size (a power of two in
+  /// [16, 16384]). 0: the scene's shadowMapSize.
+  std::uint32_t shadowMapSize = 0;
 };
 
 enum class PhaseType { Isotropic, Rayleigh, HenyeyGreenstein, CornetteShanks };
@@ -61,9 +65,14 @@ struct Object {
   glm::dvec3 albedo{0.6};           ///< optional "albedo": [r,g,b] (an extension of the format), linear
 };
 
+/// Lights a scene holds at most ("lights": [LIGHT, …]); tyndall::kMaxLights, which the stub host
+/// does not include.
+inline constexpr std::size_t kMaxSceneLights = 8;
+
 struct Scene {
   Camera camera;
-  Light light;
+  Light light;                         ///< "light", or the first of "lights"
+  std::vector<Light> additionalLights; ///< the second and later of "lights" (at most 7)
   std::vector<MediumComponent> medium;  ///< one or more components
   std::vector<Object> objects;
   std::uint32_t shadowMapSize = 2048;

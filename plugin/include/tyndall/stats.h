@@ -110,6 +110,26 @@ struct AutoEstimates {
   std::optional<double> high, balanced, performance;
 };
 
+/// Why a light of the frame recorded nothing.
+enum class LightSkipped : std::uint32_t {
+  No,               ///< it ran its technique
+  Off,              ///< intensity or colour 0
+  OutsideView,      ///< a spot light's cone misses every view ray
+  NothingScatters,  ///< σ_s = 0: no light scatters
+};
+const char* to_string(LightSkipped reason) noexcept;  ///< "no", "off", "outside-view", "nothing-scatters"
+
+/// One light of the frame: FrameDesc::light first, then FrameDesc::additionalLights in order.
+struct LightStats {
+  LightType type = LightType::Directional;
+  Technique requestedTechnique = Technique::None;
+  Technique technique = Technique::None;  ///< None when skipped
+  TechniqueChange techniqueChange = TechniqueChange::None;
+  LightSkipped skipped = LightSkipped::No;
+  std::optional<EpipolarStats> epipolar;
+  std::optional<PrefilteredStats> prefiltered;
+};
+
 struct Stats {
   std::uint64_t frameIndex = 0;  ///< frames recorded so far by this context
   Profile requestedProfile = Profile::Balanced;
@@ -120,6 +140,9 @@ struct Stats {
   Technique technique = Technique::None;
   TechniqueChange techniqueChange = TechniqueChange::None;
   bool techniqueSetByFrame = false;  ///< FrameDesc::technique chose it, not the profile table
+  /// Every light of the last frame, FrameDesc::light first; the fields above and `epipolar`,
+  /// `prefiltered` below are the first light's.
+  std::vector<LightStats> lights;
   std::optional<EpipolarStats> epipolar;        ///< when the epipolar technique ran this frame
   std::optional<PrefilteredStats> prefiltered;  ///< when the prefiltered technique ran this frame
   std::optional<EpipolarCounts> epipolarCounts; ///< once an epipolar frame's counts were read back

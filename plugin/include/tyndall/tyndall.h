@@ -196,6 +196,7 @@ struct MediumComponent {
 
 inline constexpr std::uint32_t kMaxMediumComponents = 4;
 inline constexpr std::uint32_t kMaxShadowMaps = 6;  ///< a point light's six frusta
+inline constexpr std::uint32_t kMaxLights = 8;      ///< FrameDesc::light and up to 7 additional lights
 
 struct ShadowMapDesc {
   /// Square depth image: D16_UNORM, D32_SFLOAT, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT or
@@ -205,6 +206,14 @@ struct ShadowMapDesc {
   /// World → shadow clip, depth in [0, 1], x/y in [−1, 1]; texel (i, j) covers u = (x + 1) / 2 in
   /// [i / N, (i + 1) / N], v likewise with row j.
   Mat4 worldToShadowClip{};
+};
+
+/// A light after the frame's first (FrameDesc::additionalLights): the same three inputs the first
+/// light takes in FrameDesc, with the same requirements.
+struct LightInput {
+  LightDesc light;
+  std::span<const ShadowMapDesc> shadowMaps;  ///< 1 (directional, spot) or 6 (point)
+  ImageRef lightColor;                        ///< optional, as FrameDesc::lightColor
 };
 
 struct FrameDesc {
@@ -227,6 +236,10 @@ struct FrameDesc {
   /// a point light fails with UnsupportedFeature. Any format with SAMPLED_IMAGE_FILTER_LINEAR
   /// (_SRGB is decoded), usage SAMPLED, any size. Costs more: lit sections are walked in short steps.
   ImageRef lightColor;
+  /// Optional: more lights, up to kMaxLights − 1. L_in is the sum over `light` and these; each runs
+  /// the technique its kind's profile row picks, the view ray's transmittance and the composite
+  /// are shared (docs/INTEGRATION.md "Several lights").
+  std::span<const LightInput> additionalLights;
 
   Profile profile = Profile::Balanced;
   float autoBudgetMilliseconds = 4.0f;  ///< Profile::Auto's GPU-time budget (FrameTimings' total), > 0

@@ -221,6 +221,7 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
 // march.comp per light type (TYN_LIGHT_TYPE) and light-colour texture (TYN_MARCH_LIGHT_COLOR,
 // constant_id 1); the fix-up per light type.
 Outcome EpipolarTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) {
+  if (pipelineOwner_ != nullptr) return pipelineOwner_->ensurePipelines(gpu, frame, compiled);
   return ensureLightPipelines(gpu, frame.light.type, !frame.lightColor.empty(), compiled);
 }
 
@@ -251,6 +252,7 @@ Outcome EpipolarTechnique::ensureLightPipelines(const Gpu& gpu, LightType light,
 }
 
 Outcome EpipolarTechnique::createPipelines(const Gpu& gpu) {
+  if (pipelineOwner_ != nullptr) return pipelineOwner_->createPipelines(gpu);
   bool compiled = false;
   for (LightType light : {LightType::Directional, LightType::Spot, LightType::Point}) {
     for (bool colored : {false, true}) {
@@ -532,6 +534,7 @@ void EpipolarTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, con
 }
 
 void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) {
+  const EpipolarTechnique& owner = pipelineOwner_ != nullptr ? *pipelineOwner_ : *this;
   const std::uint32_t slot = target.slot;
   const Bindings& bindings = target.bindings;
   const gpu::EpipolarConstants& constants = constants_;
@@ -597,9 +600,9 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
 
   // One workgroup per slice: its end points, line, tree, colour sums, coordinates and refinement
   // (slice_setup.comp); its last group sizes the shadow test or the march's first round.
-  pass("epipolar_slice_setup", setupPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
+  pass("epipolar_slice_setup", owner.setupPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
   if (buildTable) {
-    pass("epipolar_scattering_lut", scatteringLutPipeline_, [&] {
+    pass("epipolar_scattering_lut", owner.scatteringLutPipeline_, [&] {
       gpu.cmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
     });
   }
@@ -607,7 +610,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   // first, so that the walks cross every block that decides its texels in one step.
   if (shadowBlocksUsed_ && light == LightType::Point) {
     const std::uint32_t side = shadowBlocks_.extent.width;
-    pass("epipolar_shadow_blocks", shadowBlocksPipeline_, [&] {
+    pass("epipolar_shadow_blocks", owner.shadowBlocksPipeline_, [&] {
       gpu.cmdDispatch(cmd, groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP),
                            groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP), shadowBlocks_.extent.height / side);
     });
@@ -615,40 +618,40 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   // With a tree, samples whose whole ray it shows in shadow get zero without being marched; the
   // test's last group sizes the march's first round.
   if (light != LightType::Point && constants.tree_enabled != 0) {
-    indirectPass("epipolar_shadow_test", shadowTestPipeline_, textures_.marchList.buffer, kShadowTestArgsOffset);
+    indirectPass("epipolar_shadow_test", owner.shadowTestPipeline_, textures_.marchList.buffer, kShadowTestArgsOffset);
   }
   // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
   // refinement adds.
-  const VkPipeline march = marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
+  const VkPipeline march = owner.marchPipelines_[static_cast<std::size_t>(light)][bindings.hasLightColor ? 1 : 0];
   indirectPass("epipolar_march", march, textures_.marchList.buffer, kMarchRoundArgsOffset[0]);
   if (constants.intensity_refinement_threshold < 1.0f) {
-    pass("epipolar_refine_intensity", refineIntensityPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
+    pass("epipolar_refine_intensity", owner.refineIntensityPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
     indirectPass("epipolar_march_refined", march, textures_.marchList.buffer, kMarchRoundArgsOffset[1]);
   }
   // Interpolates along the slices and across them; its last group sizes the fix-up.
-  pass("epipolar_unwarp", unwarpPipelines_[serialFixup(marchParts_, light) ? 1 : 0], [&] {
+  pass("epipolar_unwarp", owner.unwarpPipelines_[serialFixup(marchParts_, light) ? 1 : 0], [&] {
     gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
   // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
   // enough rays to repay the blocks; the unwarp decides, zero groups otherwise.
   if (shadowBlocksUsed_ && light == LightType::Directional) {
-    indirectPass("epipolar_shadow_blocks", shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
+    indirectPass("epipolar_shadow_blocks", owner.shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
   }
 
   // The fix-up dispatch is sized on the GPU by the number of flagged pixels.
-  indirectPass("epipolar_fixup", fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer, 0);
+  indirectPass("epipolar_fixup", owner.fixupPipelines_[static_cast<std::size_t>(light)], fixupArgs_.buffer, 0);
 
   if (bindings.debugView != DebugView::None) {
-    pass("epipolar_debug_background", debugBackgroundPipeline_, [&] {
+    pass("epipolar_debug_background", owner.debugBackgroundPipeline_, [&] {
       gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                            groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
     });
     if (bindings.debugView == DebugView::EpipolarSamples) {
-      pass("epipolar_debug_samples", debugSamplesPipeline_,
+      pass("epipolar_debug_samples", owner.debugSamplesPipeline_,
            [&] { gpu.cmdDispatch(cmd, groups(samples, 8), groups(slices, 8), 1); });
     } else {
-      pass("epipolar_debug_fixup", debugFixupPipeline_, [&] { gpu.cmdDispatchIndirect(cmd, fixupArgs_.buffer, 0); });
+      pass("epipolar_debug_fixup", owner.debugFixupPipeline_, [&] { gpu.cmdDispatchIndirect(cmd, fixupArgs_.buffer, 0); });
     }
   }
 

@@ -38,6 +38,9 @@ class EpipolarTechnique final : public ScatteringTechnique {
   using Bindings = ScatteringBindings;
 
   Outcome create(const Gpu& gpu, const TechniqueResources& resources) override;
+  void sharePipelinesOf(ScatteringTechnique& owner) override {
+    pipelineOwner_ = &static_cast<EpipolarTechnique&>(owner);
+  }
   Outcome createPipelines(const Gpu& gpu) override;
   /// Compiles what a frame with this light (and light-colour texture or none) needs.
   Outcome ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) override;
@@ -104,6 +107,7 @@ class EpipolarTechnique final : public ScatteringTechnique {
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
   Outcome createCommonPipelines(const Gpu& gpu);
 
+  EpipolarTechnique* pipelineOwner_ = nullptr;  // sharePipelinesOf: whose pipelines record() binds
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   bool commonReady_ = false;  // every pipeline but march's and the fix-up's light variants

@@ -234,6 +234,7 @@ void PrefilteredTechnique::destroyMaps(const Gpu& gpu, Maps& maps) {
 }
 
 Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
+  if (pipelineOwner_ != nullptr) return pipelineOwner_->createPipelines(gpu);
   if (pipelinesReady_) return {};
   auto make = [&](std::span<const std::uint32_t> spirv, VkPipeline& out, const VkSpecializationInfo* spec = nullptr) {
     return createComputePipeline(gpu, pipelineLayout_, spirv, out, spec);
@@ -324,7 +325,8 @@ Outcome PrefilteredTechnique::ensureMaps(const Gpu& gpu, const MapKey& key, std:
   return {};
 }
 
-Outcome PrefilteredTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& /*frame*/, bool& compiled) {
+Outcome PrefilteredTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) {
+  if (pipelineOwner_ != nullptr) return pipelineOwner_->ensurePipelines(gpu, frame, compiled);
   compiled = !pipelinesReady_;
   return createPipelines(gpu);
 }
@@ -442,6 +444,7 @@ void PrefilteredTechnique::writeDescriptors(const Gpu& gpu, std::uint32_t slot, 
 }
 
 void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) {
+  const PrefilteredTechnique& owner = pipelineOwner_ != nullptr ? *pipelineOwner_ : *this;
   const std::uint32_t slot = target.slot;
   const Bindings& bindings = target.bindings;
   const VkExtent2D extent = target.extent;
@@ -469,23 +472,23 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Rec
                               &maps_.depthBoundsTexels, &maps_.depthBoundsPrefix, &maps_.texelDepths});
   if (plan_.filtered) {
     const std::uint32_t size = maps_.key.momentMapSize;
-    pass("prefiltered_moment_shadow_map", momentMapPipeline_, [&] {
+    pass("prefiltered_moment_shadow_map", owner.momentMapPipeline_, [&] {
       gpu.cmdDispatch(cmd, groups(size, gpu::TYN_PF_TEXEL_GROUP), groups(size, gpu::TYN_PF_TEXEL_GROUP), 1);
     });
   }
-  pass("prefiltered_rectify", rectifyPipelines_[plan_.basis], [&] {
+  pass("prefiltered_rectify", owner.rectifyPipelines_[plan_.basis], [&] {
     gpu.cmdDispatch(cmd, groups(maps_.key.columns, gpu::TYN_PF_TEXEL_GROUP),
                          groups(maps_.key.rows, gpu::TYN_PF_TEXEL_GROUP), 1);
   });
   const auto scheme = static_cast<std::size_t>(plan_.prefixSums);
-  const VkPipeline prefix = prefixSumPipelines_[scheme][plan_.basis];
+  const VkPipeline prefix = owner.prefixSumPipelines_[scheme][plan_.basis];
   const std::uint32_t rowsPerGroup = kPrefixSumSchemes[scheme][1];
   pass("prefiltered_prefix_sums", prefix, [&] {
     // One more layer builds the rows' min/max trees for the trimmed segments (prefix_sums.glsl).
     gpu.cmdDispatch(cmd, 1, groups(maps_.key.rows, rowsPerGroup),
                          plan_.sets * slotsOf(storage) + (plan_.boundsTree ? 1u : 0u));
   });
-  pass("prefiltered_evaluate", evaluatePipelines_[plan_.basis], [&] {
+  pass("prefiltered_evaluate", owner.evaluatePipelines_[plan_.basis], [&] {
     gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
                          groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
@@ -494,7 +497,7 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Rec
     timer.beginPass(gpu, cmd, "prefiltered_epipole_fixup_args");
     memoryBarrier(gpu, cmd, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, VK_ACCESS_SHADER_WRITE_BIT, kCompute,
                   readWrite);
-    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupArgsPipeline_);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, owner.fixupArgsPipeline_);
     gpu.cmdDispatch(cmd, 1, 1, 1);
     timer.endPass(gpu, cmd);
     passes.emplace_back("prefiltered_epipole_fixup_args");
@@ -502,7 +505,7 @@ void PrefilteredTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Rec
     timer.beginPass(gpu, cmd, "prefiltered_epipole_fixup");
     memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                   readWrite | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
-    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, fixupPipeline_);
+    gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, owner.fixupPipeline_);
     gpu.cmdDispatchIndirect(cmd, fixupArgs_.buffer, 0);
     timer.endPass(gpu, cmd);
     passes.emplace_back("prefiltered_epipole_fixup");

@@ -35,6 +35,9 @@ class PrefilteredTechnique final : public ScatteringTechnique {
   Outcome create(const Gpu& gpu, const TechniqueResources& resources) override;
   /// Compiles the technique's pipelines (at context creation, in Context::warmUp, or in the first
   /// frame that runs it with PipelineCreation::OnFirstUse).
+  void sharePipelinesOf(ScatteringTechnique& owner) override {
+    pipelineOwner_ = &static_cast<PrefilteredTechnique&>(owner);
+  }
   Outcome createPipelines(const Gpu& gpu) override;
   Outcome ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) override;
   void destroy(const Gpu& gpu) override;
@@ -85,6 +88,7 @@ class PrefilteredTechnique final : public ScatteringTechnique {
   void writeDescriptors(const Gpu& gpu, std::uint32_t slot, const Bindings& bindings);
 
   VkSampler prefixSampler_ = VK_NULL_HANDLE;  // linear, clamp along u, repeat along v
+  PrefilteredTechnique* pipelineOwner_ = nullptr;  // sharePipelinesOf: whose pipelines record() binds
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   bool pipelinesReady_ = false;

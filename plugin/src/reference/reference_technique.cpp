@@ -29,6 +29,7 @@ Outcome ReferenceTechnique::create(const Gpu& gpu, const TechniqueResources& res
 }
 
 Outcome ReferenceTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) {
+  if (pipelineOwner_ != nullptr) return pipelineOwner_->ensurePipelines(gpu, frame, compiled);
   return ensurePipeline(gpu, frame.light.type, compiled);
 }
 
@@ -42,6 +43,7 @@ Outcome ReferenceTechnique::ensurePipeline(const Gpu& gpu, LightType light, bool
 }
 
 Outcome ReferenceTechnique::createPipelines(const Gpu& gpu) {
+  if (pipelineOwner_ != nullptr) return pipelineOwner_->createPipelines(gpu);
   bool compiled = false;
   for (LightType light : {LightType::Directional, LightType::Spot, LightType::Point}) {
     if (Outcome o = ensurePipeline(gpu, light, compiled); !o) return o;
@@ -80,7 +82,8 @@ void ReferenceTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Recor
   writes[4].pImageInfo = &lightColor;
   gpu.vk.vkUpdateDescriptorSets(gpu.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
 
-  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<std::size_t>(b.light)]);
+  const ReferenceTechnique& owner = pipelineOwner_ != nullptr ? *pipelineOwner_ : *this;
+  gpu.vk.vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, owner.pipelines_[static_cast<std::size_t>(b.light)]);
   gpu.vk.vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelineLayout_, 0, 1, &set, 0, nullptr);
   const std::uint32_t group = gpu::TYN_PIXEL_GROUP_SIZE;
   gpu.cmdDispatch(cmd, (extent.width + group - 1) / group, (extent.height + group - 1) / group, 1);

@@ -13,6 +13,9 @@ class ReferenceTechnique final : public ScatteringTechnique {
  public:
   Outcome create(const Gpu& gpu, const TechniqueResources& resources) override;
   /// The pipeline of every light type.
+  void sharePipelinesOf(ScatteringTechnique& owner) override {
+    pipelineOwner_ = &static_cast<ReferenceTechnique&>(owner);
+  }
   Outcome createPipelines(const Gpu& gpu) override;
   Outcome ensurePipelines(const Gpu& gpu, const FrameDesc& frame, bool& compiled) override;
   /// Nothing to set up: the frame's constants are the context's.
@@ -25,6 +28,7 @@ class ReferenceTechnique final : public ScatteringTechnique {
  private:
   Outcome ensurePipeline(const Gpu& gpu, LightType light, bool& compiled);
 
+  ReferenceTechnique* pipelineOwner_ = nullptr;  // sharePipelinesOf: whose pipelines record() binds
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   LightPipelines pipelines_{};  // per light type

@@ -81,6 +81,23 @@ constexpr std::uint32_t kCpuDriverPointLightMapLimit = 4096;
 // Frames a retired L_in target is kept as a spare (about two seconds at 60 Hz).
 constexpr std::uint32_t kSpareTargetFrames = 120;
 
+// One instance of each technique: a light's.
+struct TechniqueSet {
+  ReferenceTechnique reference;
+  EpipolarTechnique epipolar;
+  PrefilteredTechnique prefiltered;
+  std::array<ScatteringTechnique*, 3> all() { return {&reference, &epipolar, &prefiltered}; }
+  ScatteringTechnique* techniqueFor(Technique technique) {
+    switch (technique) {
+      case Technique::Reference: return &reference;
+      case Technique::Epipolar: return &epipolar;
+      case Technique::Prefiltered: return &prefiltered;
+      case Technique::None: break;
+    }
+    return nullptr;
+  }
+};
+
 }  // namespace
 
 struct Context::Impl {
@@ -94,43 +111,18 @@ struct Context::Impl {
   bool whiteCleared = false;
   std::vector<MappedBuffer> constants;  // one per frame slot
   GpuTimer timer;
-  ReferenceTechnique reference;
-  EpipolarTechnique epipolar;
-  PrefilteredTechnique prefiltered;
-  // In order of creation.
-  std::array<ScatteringTechnique*, 3> techniques{&reference, &epipolar, &prefiltered};
-  ScatteringTechnique* techniqueFor(Technique technique) {
-    switch (technique) {
-      case Technique::Reference: return &reference;
-      case Technique::Epipolar: return &epipolar;
-      case Technique::Prefiltered: return &prefiltered;
-      case Technique::None: break;
-    }
-    return nullptr;
-  }
+  TechniqueSet first;  // FrameDesc::light's: compiles the pipelines every light's instance uses
+  std::array<ScatteringTechnique*, 3> techniques = first.all();  // in order of creation
   // The techniques of each additional light (FrameDesc::additionalLights[i] uses additional[i]):
   // created at the first frame with that light, recording with the first light's pipelines
   // (ScatteringTechnique::sharePipelinesOf), each with its own constants per frame slot.
-  struct LightTechniques {
-    ReferenceTechnique reference;
-    EpipolarTechnique epipolar;
-    PrefilteredTechnique prefiltered;
+  struct LightTechniques : TechniqueSet {
     std::vector<MappedBuffer> constants;  // one per frame slot
-    std::array<ScatteringTechnique*, 3> all() { return {&reference, &epipolar, &prefiltered}; }
-    ScatteringTechnique* techniqueFor(Technique technique) {
-      switch (technique) {
-        case Technique::Reference: return &reference;
-        case Technique::Epipolar: return &epipolar;
-        case Technique::Prefiltered: return &prefiltered;
-        case Technique::None: break;
-      }
-      return nullptr;
-    }
   };
   std::array<std::unique_ptr<LightTechniques>, kMaxLights - 1> additional;
   /// Light `index`'s instance of `technique` (0: FrameDesc::light's), null for Technique::None.
   ScatteringTechnique* instanceFor(std::size_t index, Technique technique) {
-    return index == 0 ? techniqueFor(technique) : additional[index - 1]->techniqueFor(technique);
+    return index == 0 ? first.techniqueFor(technique) : additional[index - 1]->techniqueFor(technique);
   }
   VkBuffer constantsFor(std::size_t index, std::uint32_t slot) const {
     return index == 0 ? constants[slot].buffer : additional[index - 1]->constants[slot].buffer;
@@ -250,9 +242,9 @@ Outcome Context::Impl::ensureAdditionalLight(std::size_t index) {
   for (ScatteringTechnique* t : created->all()) {
     if (Outcome o = t->create(gpu, resources); !o) return discard(o);
   }
-  created->reference.sharePipelinesOf(reference);
-  created->epipolar.sharePipelinesOf(epipolar);
-  created->prefiltered.sharePipelinesOf(prefiltered);
+  created->reference.sharePipelinesOf(first.reference);
+  created->epipolar.sharePipelinesOf(first.epipolar);
+  created->prefiltered.sharePipelinesOf(first.prefiltered);
   created->constants.resize(desc.maxFramesInFlight);
   for (MappedBuffer& buffer : created->constants) {
     if (Outcome o = createMappedBuffer(gpu, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, buffer); !o) {
@@ -272,7 +264,7 @@ Outcome Context::Impl::warmUp() {
 }
 
 Outcome Context::Impl::ensurePipelines(Technique technique, const FrameDesc& frame) {
-  ScatteringTechnique* t = techniqueFor(technique);
+  ScatteringTechnique* t = first.techniqueFor(technique);
   if (t == nullptr) return {};
   bool compiled = false;
   const Outcome outcome = t->ensurePipelines(gpu, frame, compiled);

@@ -31,10 +31,9 @@
 namespace tyndall::samples {
 namespace {
 
-// The scenes each frame picks from: every light type, with and without a light-colour texture, and
-// several lights in one frame.
-constexpr std::array<const char*, 6> kScenes = {"pillars", "stained-glass-sun", "spot-lamp", "stained-glass",
-                                                "point-lamp", "street-dusk"};
+// The scenes each frame picks from: every light type, with and without a light-colour texture.
+constexpr std::array<const char*, 5> kScenes = {"pillars", "stained-glass-sun", "spot-lamp", "stained-glass",
+                                                "point-lamp"};
 // Back buffers an engine may switch between (HDR toggle, a compute or a fragment post-process chain):
 // the format and whether it has STORAGE usage (which picks the composite's compute path).
 struct BackBuffer {

@@ -146,13 +146,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   frame.camera.view = matrix(in, false);
   frame.camera.projection = matrix(in, true);
   frame.camera.infiniteFarSkyDistance = in.number();
-  frame.light.type = in.pick<LightType>(3);
-  frame.light.direction = in.float3();
-  frame.light.position = in.float3();
-  frame.light.color = in.float3();
-  frame.light.intensity = in.number();
-  frame.light.innerConeRadians = in.number();
-  frame.light.outerConeRadians = in.number();
+  const auto readLight = [&in]() {
+    LightDesc light;
+    light.type = in.pick<LightType>(3);
+    light.direction = in.float3();
+    light.position = in.float3();
+    light.color = in.float3();
+    light.intensity = in.number();
+    light.innerConeRadians = in.number();
+    light.outerConeRadians = in.number();
+    return light;
+  };
+  frame.light = readLight();
   std::vector<MediumComponent> medium(in.byte() % (kMaxMediumComponents + 2));
   for (MediumComponent& component : medium) {
     component.scattering = in.float3();
@@ -161,12 +166,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     component.g = in.number();
   }
   frame.medium = medium;
-  std::vector<ShadowMapDesc> shadowMaps(in.byte() % (kMaxShadowMaps + 2));
   const VkExtent2D mapSize{256, 256};
-  for (ShadowMapDesc& map : shadowMaps) {
-    map.depth = image(in, mapSize);
-    map.worldToShadowClip = matrix(in, in.byte() & 1);
-  }
+  const auto readShadowMaps = [&]() {
+    std::vector<ShadowMapDesc> maps(in.byte() % (kMaxShadowMaps + 2));
+    for (ShadowMapDesc& map : maps) {
+      map.depth = image(in, mapSize);
+      map.worldToShadowClip = matrix(in, in.byte() & 1);
+    }
+    return maps;
+  };
+  const std::vector<ShadowMapDesc> shadowMaps = readShadowMaps();
   frame.shadowMaps = shadowMaps;
   frame.depth = image(in, output);
   frame.color = image(in, output);
@@ -179,6 +188,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   frame.profile = in.pick<Profile>(5);
   frame.autoBudgetMilliseconds = in.number();
   frame.technique = in.pick<Technique>(4);
+  // Additional lights last, so that inputs written before they existed decode as before (none).
+  std::vector<LightInput> additional(in.byte() % (kMaxLights + 1));
+  std::vector<std::vector<ShadowMapDesc>> additionalMaps(additional.size());
+  for (std::size_t i = 0; i < additional.size(); ++i) {
+    additional[i].light = readLight();
+    additionalMaps[i] = readShadowMaps();
+    additional[i].shadowMaps = additionalMaps[i];
+    if (in.byte() & 1) additional[i].lightColor = image(in, VkExtent2D{16, 16});
+  }
+  frame.additionalLights = additional;
 
   FrameSetup setup;
   const Outcome outcome = prepareFrame(gpu, output, frame, setup);
@@ -196,5 +215,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                        !frame.lightColor.empty(), output, setup.scatters});
   require(selection.technique != Technique::Prefiltered || frame.light.type == LightType::Directional,
           "the prefiltered technique chosen for a local light");
+  require(frame.additionalLights.size() < kMaxLights, "a valid frame with more than kMaxLights lights");
+  require(setup.lights.size() == 1 + frame.additionalLights.size(), "a light without its setup");
+  for (const LightSetup& light : setup.lights) {
+    require(light.shadowMaps.size() == (light.light.type == LightType::Point ? 6u : 1u),
+            "a valid light with the wrong number of shadow maps");
+    require(light.light.intensity > 0.0f || light.skipped == LightSkipped::Off, "a light without intensity not skipped");
+  }
   return 0;
 }

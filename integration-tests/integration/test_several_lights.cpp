@@ -53,8 +53,13 @@ std::vector<double> sumOfSingleLights(const host::Scene& scene, const samples::R
   return sum;
 }
 
+// Passes named `name` whichever light they belong to ("lightI/name" in a frame of several lights).
 std::size_t countPasses(const Stats& stats, const std::string& name) {
-  return static_cast<std::size_t>(std::count(stats.passesRecorded.begin(), stats.passesRecorded.end(), name));
+  return static_cast<std::size_t>(std::count_if(stats.passesRecorded.begin(), stats.passesRecorded.end(),
+                                                [&](const std::string& pass) {
+                                                  return pass == name || (pass.size() > name.size() + 1 &&
+                                                                          pass.ends_with("/" + name));
+                                                }));
 }
 
 double sceneBar(Profile profile) { return samples::bench::profileGoal(profile)->maxSceneRelativeRmse; }
@@ -78,6 +83,18 @@ TEST(SeveralLights, TheReferenceIsTheSumOfSingleLightFrames) {
   EXPECT_EQ(countPasses(all.stats, "reference_scattering"), 4u);
   EXPECT_EQ(countPasses(all.stats, "light_sum"), 3u);
   EXPECT_EQ(countPasses(all.stats, "composite"), 1u);
+  // Each light's passes carry its index, so that their timings say whose they are; the shared
+  // composite has none.
+  for (const char* pass : {"light0/reference_scattering", "light3/reference_scattering", "light3/light_sum",
+                           "composite"}) {
+    EXPECT_NE(std::find(all.stats.passesRecorded.begin(), all.stats.passesRecorded.end(), pass),
+              all.stats.passesRecorded.end())
+        << pass;
+  }
+  ASSERT_FALSE(all.timings.empty());
+  EXPECT_NE(std::find_if(all.timings.back().passes.begin(), all.timings.back().passes.end(),
+                         [](const PassTiming& p) { return p.name == "light2/reference_scattering"; }),
+            all.timings.back().passes.end());
   expectNoValidationMessages();
 }
 

@@ -724,9 +724,21 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
   } else {
     // The first light writes the L_in target; each later one its own target, then adds it.
     const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+    // With several lights each light's passes are named "lightI/…" (I its index in the frame), so
+    // that their timings say which light they belong to.
+    const bool named = stats.lights.size() > 1;
     for (std::size_t k = 0; k < runs.size(); ++k) {
+      const std::string prefix = named ? "light" + std::to_string(runs[k].index) + "/" : std::string();
+      const std::size_t firstPass = stats.passesRecorded.size();
+      timer.setPassPrefix(prefix);
       recordTechnique(cmd, slot, runs[k], k == 0 ? scattering : lightTarget, depthLayout, release);
-      if (k == 0) continue;
+      for (std::size_t p = firstPass; p < stats.passesRecorded.size(); ++p) {
+        stats.passesRecorded[p].insert(0, prefix);
+      }
+      if (k == 0) {
+        timer.setPassPrefix({});
+        continue;
+      }
       BarrierBatch toSum;
       toSum.image(lightTarget.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                   {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
@@ -739,7 +751,8 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
       lightSum.record(gpu, cmd, slot * (kMaxLights - 1) + static_cast<std::uint32_t>(k - 1), scattering.view,
                       lightTarget.view, scattering.extent);
       timer.endPass(gpu, cmd);
-      stats.passesRecorded.emplace_back("light_sum");
+      timer.setPassPrefix({});
+      stats.passesRecorded.push_back(prefix + "light_sum");
     }
     release.image(scattering.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_WRITE_BIT},
                   {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, VK_ACCESS_SHADER_READ_BIT});

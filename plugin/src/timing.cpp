@@ -43,7 +43,7 @@ void GpuTimer::beginPass(const Gpu& gpu, VkCommandBuffer cmd, const char* name) 
   passOpen_ = s.passes.size() < kMaxPasses;
   if (!passOpen_) return;
   const std::uint32_t query = current_ * kMaxPasses * 2 + static_cast<std::uint32_t>(s.passes.size()) * 2;
-  s.passes.emplace_back(name);
+  s.passes.push_back(prefix_ + name);
   // BOTTOM_OF_PIPE: the stamp is taken once all earlier work has finished.
   gpu.vk.vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, pool_, query);
 }

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gpu.h"
@@ -23,6 +24,8 @@ class GpuTimer {
   /// Reads the slot's previous frame (if any), then resets its queries for a new frame.
   void beginFrame(const Gpu& gpu, VkCommandBuffer cmd, std::uint32_t slot, std::uint64_t frameIndex);
   void beginPass(const Gpu& gpu, VkCommandBuffer cmd, const char* name);
+  /// Names the passes begun from now on `prefix` + name (a frame of several lights: "light2/").
+  void setPassPrefix(std::string prefix) { prefix_ = std::move(prefix); }
   void endPass(const Gpu& gpu, VkCommandBuffer cmd);
 
   /// Reads every slot whose results are available, without waiting.
@@ -46,6 +49,7 @@ class GpuTimer {
   std::uint64_t validMask_ = ~0ull;
   std::vector<Slot> slots_;
   std::uint32_t current_ = 0;
+  std::string prefix_;
   bool passOpen_ = false;  // beginPass wrote the pass's first stamp; endPass writes its second
   std::vector<FrameTimings> completed_;
   FrameTimings latest_;

@@ -331,6 +331,18 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
     if (perPass.contains(name)) passes[name] = median(perPass[name]);
   }
   json["passMilliseconds"] = passes;
+  // A frame of several lights names each light's passes "lightI/…": each light's share, the sum of
+  // its passes' medians (the shared composite and AOV copies belong to none).
+  if (result.stats.lights.size() > 1) {
+    std::vector<double> perLight(result.stats.lights.size(), 0.0);
+    for (const auto& [name, ms] : passes.items()) {
+      const std::size_t slash = name.find('/');
+      if (name.rfind("light", 0) != 0 || slash == std::string::npos) continue;
+      const std::size_t light = std::stoul(name.substr(5, slash - 5));
+      if (light < perLight.size()) perLight[light] += ms.get<double>();
+    }
+    json["lightMilliseconds"] = perLight;
+  }
   if (const std::optional<EpipolarCounts>& counts = result.stats.epipolarCounts;
       result.stats.technique == Technique::Epipolar && counts) {
     json["marchedSamples"] = counts->marchedSamples;

@@ -68,6 +68,9 @@ TEST(BenchSummary, OverTheScenesOfOneKindOfLight) {
   Row point = rows[2];
   point.light = "point";
   EXPECT_EQ(lightClassOf(point), LightClass::Local);
+  Row street = rows[2];
+  street.light = "several";
+  EXPECT_FALSE(lightClassOf(street).has_value());
   const std::vector<Summary> all = summarize(rows, 64, 36, 256);
   ASSERT_EQ(all.size(), 1u);
   EXPECT_EQ(all[0].scenes, 3u);

@@ -198,7 +198,7 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "tyndall-bench: %s\n", reportError.c_str());
       return 1;
     }
-    std::fprintf(stderr, "tyndall-bench: wrote %s/{results.csv,results.json,results.md,pareto.json,tradeoffs.md,choice.json}\n",
+    std::fprintf(stderr, "tyndall-bench: wrote %s/{results.csv,results.json,results.md,pareto.json,tradeoffs.md,tradeoffs-measurements.md,choice.json}\n",
                  out.c_str());
   }
   if (!ok) {

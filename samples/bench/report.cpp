@@ -220,7 +220,8 @@ std::string scheduleText(const std::string& schedule) {
 
 }  // namespace
 
-LightClass lightClassOf(const Row& row) {
+std::optional<LightClass> lightClassOf(const Row& row) {
+  if (row.light == "several") return std::nullopt;
   return row.light == "directional" ? LightClass::Directional : LightClass::Local;
 }
 

@@ -34,8 +34,9 @@ struct Summary {
   std::map<std::string, double> sceneRelativeRmse;  ///< per scene
 };
 
-/// The kind of light a row's scene has (Row::light).
-LightClass lightClassOf(const Row& row);
+/// The kind of light a row's scene has (Row::light); none for a scene of several lights, which
+/// the summaries over every scene count and no kind's choice does.
+std::optional<LightClass> lightClassOf(const Row& row);
 
 /// The configurations over the scenes of one output and shadow-map size; with `lights`, over the
 /// scenes of that kind of light only (the profile table's rows are chosen per kind).

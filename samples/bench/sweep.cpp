@@ -217,7 +217,8 @@ class Sweep {
     const Configuration referenceConfig;
     Row base;
     base.scene = stem;
-    base.light = lightName(scene.light.type);
+    // A scene of several lights belongs to neither kind's profile row: "several".
+    base.light = scene.additionalLights.empty() ? lightName(scene.light.type) : "several";
     base.width = width;
     base.height = height;
     base.shadowMap = map;

@@ -77,7 +77,7 @@ struct SweepOptions {
 struct Row {
   std::string scene;  ///< file stem
   /// The scene's light: "directional", "spot" or "point" (the profile table has a row per
-  /// LightClass, chosen over that kind's scenes).
+  /// LightClass, chosen over that kind's scenes), or "several" for a scene of several lights.
   std::string light;
   std::uint32_t width = 0, height = 0, shadowMap = 0;
   std::string configuration, technique, parameters;

@@ -260,11 +260,12 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
     state.shadowMapSize = settings.shadowMapSize != 0       ? settings.shadowMapSize
                           : state.light->shadowMapSize != 0 ? state.light->shadowMapSize
                                                             : scene.shadowMapSize;
+    const std::string name = lights.size() == 1 ? "light" : "lights[" + std::to_string(i) + "]";
     if (state.shadowMapSize < 1 || state.shadowMapSize > maxSize) {
-      error = "shadow map size must be in [1, " + std::to_string(maxSize) + "]";
+      error = (lights.size() == 1 ? std::string() : name + ": ") + "shadow map size must be in [1, " +
+              std::to_string(maxSize) + "]";
       return false;
     }
-    const std::string name = lights.size() == 1 ? "light" : "lights[" + std::to_string(i) + "]";
     if (!validateLight(*state.light, name, error)) return false;
   }
   if (!checkFormats(error)) return false;

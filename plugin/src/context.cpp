@@ -112,7 +112,6 @@ struct Context::Impl {
   std::vector<MappedBuffer> constants;  // one per frame slot
   GpuTimer timer;
   TechniqueSet first;  // FrameDesc::light's: compiles the pipelines every light's instance uses
-  std::array<ScatteringTechnique*, 3> techniques = first.all();  // in order of creation
   // The techniques of each additional light (FrameDesc::additionalLights[i] uses additional[i]):
   // created at the first frame with that light, recording with the first light's pipelines
   // (ScatteringTechnique::sharePipelinesOf), each with its own constants per frame slot.
@@ -124,11 +123,18 @@ struct Context::Impl {
   ScatteringTechnique* instanceFor(std::size_t index, Technique technique) {
     return index == 0 ? first.techniqueFor(technique) : additional[index - 1]->techniqueFor(technique);
   }
-  VkBuffer constantsFor(std::size_t index, std::uint32_t slot) const {
-    return index == 0 ? constants[slot].buffer : additional[index - 1]->constants[slot].buffer;
+  /// Light `index`'s FrameConstants buffer of frame slot `slot`.
+  const MappedBuffer& constantsFor(std::size_t index, std::uint32_t slot) const {
+    return index == 0 ? constants[slot] : additional[index - 1]->constants[slot];
   }
-  void* mappedConstantsFor(std::size_t index, std::uint32_t slot) const {
-    return index == 0 ? constants[slot].mapped : additional[index - 1]->constants[slot].mapped;
+  /// Calls `f` with every technique instance there is: the first light's, then the additional ones'.
+  template <class F>
+  void forEachInstance(F&& f) {
+    for (ScatteringTechnique* t : first.all()) f(*t);
+    for (auto& light : additional) {
+      if (!light) continue;
+      for (ScatteringTechnique* t : light->all()) f(*t);
+    }
   }
   LightSumPass lightSum;
   CompositePass composite;
@@ -207,7 +213,7 @@ Outcome Context::Impl::createSizeIndependent() {
   stats.timestampsSupported = timer.supported();
   TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
   resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
-  for (ScatteringTechnique* technique : techniques) {
+  for (ScatteringTechnique* technique : first.all()) {
     if (Outcome o = technique->create(gpu, resources); !o) return o;
   }
   if (Outcome o = composite.create(gpu, nearest, desc.maxFramesInFlight); !o) return o;
@@ -257,7 +263,7 @@ Outcome Context::Impl::ensureAdditionalLight(std::size_t index) {
 }
 
 Outcome Context::Impl::warmUp() {
-  for (ScatteringTechnique* technique : techniques) {
+  for (ScatteringTechnique* technique : first.all()) {
     if (Outcome o = technique->createPipelines(gpu); !o) return o;
   }
   return {};
@@ -304,12 +310,7 @@ Outcome Context::Impl::useResolution(ScatteringResolution wanted) {
 }
 
 void Context::Impl::destroySizeDependent() {
-  for (ScatteringTechnique* technique : techniques) technique->destroySizeDependent(gpu);
-  for (auto& light : additional) {
-    if (light) {
-      for (ScatteringTechnique* technique : light->all()) technique->destroySizeDependent(gpu);
-    }
-  }
+  forEachInstance([&](ScatteringTechnique& technique) { technique.destroySizeDependent(gpu); });
   destroyImage(gpu, lightTarget);
   destroyImage(gpu, debugImage);
   destroyImage(gpu, aovTarget);
@@ -329,6 +330,7 @@ void Context::Impl::destroyAll() {
   }
   lightSum.destroy(gpu);
   composite.destroy(gpu);
+  const std::array<ScatteringTechnique*, 3> techniques = first.all();
   for (auto it = techniques.rbegin(); it != techniques.rend(); ++it) (*it)->destroy(gpu);
   timer.destroy(gpu);
   for (MappedBuffer& buffer : constants) destroyBuffer(gpu, buffer);
@@ -571,12 +573,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   }
   retiredTargets.release(stats.frameIndex, desc.maxFramesInFlight + kSpareTargetFrames,
                          [&](OwnedImage& image) { destroyImage(gpu, image); });
-  for (ScatteringTechnique* t : techniques) t->releaseRetired(gpu, stats.frameIndex, desc.maxFramesInFlight);
-  for (auto& light : additional) {
-    if (light) {
-      for (ScatteringTechnique* t : light->all()) t->releaseRetired(gpu, stats.frameIndex, desc.maxFramesInFlight);
-    }
-  }
+  forEachInstance([&](ScatteringTechnique& t) { t.releaseRetired(gpu, stats.frameIndex, desc.maxFramesInFlight); });
   const bool reduced = resolution != ScatteringResolution::Full;
   if (reduced && aovTarget.image == VK_NULL_HANDLE &&
       (!frame.scatteringOutput.empty() || !frame.transmittanceOutput.empty())) {
@@ -642,7 +639,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   gpu.barriers = 0;
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
   // Counts the slot's previous frame left, whichever technique runs now (the first light's).
-  for (ScatteringTechnique* t : techniques) t->readBack(slot, stats);
+  for (ScatteringTechnique* t : first.all()) t->readBack(slot, stats);
 
   if (!setup.attenuates) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
@@ -666,7 +663,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     stats.techniqueNote = note;
     for (std::size_t i = 0; i < lightCount; ++i) {
       if (i == 0 || selections[i].technique != Technique::None) {
-        std::memcpy(mappedConstantsFor(i, slot), &setup.lights[i].constants, sizeof(gpu::FrameConstants));
+        std::memcpy(constantsFor(i, slot).mapped, &setup.lights[i].constants, sizeof(gpu::FrameConstants));
       }
     }
     recordScattering(cmd, slot, frame, runs);
@@ -809,7 +806,7 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
 
   // Host inputs: depth buffer and shadow maps, sampled by the compute pass.
   ScatteringBindings bindings;
-  bindings.constants = constantsFor(run.index, slot);
+  bindings.constants = constantsFor(run.index, slot).buffer;
   bindings.depth = frame.depth.view;
   bindings.depthLayout = depthLayout;
   bindings.light = frame.light.type;

@@ -337,7 +337,6 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
     }
     out.scatters = out.scatters || l.skipped == LightSkipped::No;
   }
-  out.constants = out.lights.front().constants;
   return {};
 }
 

@@ -21,7 +21,6 @@ struct LightSetup {
 };
 
 struct FrameSetup {
-  gpu::FrameConstants constants{};  ///< the first light's (lights[0].constants)
   std::vector<LightSetup> lights;   ///< FrameDesc::light, then FrameDesc::additionalLights
   ProjectionInfo projection;
   bool scatters = false;    ///< some light is not skipped: there is in-scattering to compute

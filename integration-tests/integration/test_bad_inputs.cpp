@@ -73,6 +73,42 @@ std::vector<BadCase> badCases() {
        }},
       {"no shadow map", invalid, [](F& f, S&) { f.shadowMaps = {}; }},
       {"point light with one shadow map", invalid, [](F& f, S&) { f.light.type = LightType::Point; }},
+      {"five cascades", invalid, [](F& f, S& s) {
+         s.shadowMaps.assign(5, s.shadowMaps[0]);
+         f.shadowMaps = s.shadowMaps;
+       }, "shadowMaps: a directional light needs 1 to 4"},
+      {"cascades that overlap", invalid, [](F& f, S& s) {
+         s.shadowMaps.assign(2, s.shadowMaps[0]);
+         s.shadowMaps[0].viewDepthFar = 10.0f;
+         s.shadowMaps[1].viewDepthNear = 8.0f;
+         s.shadowMaps[1].viewDepthFar = 50.0f;
+         f.shadowMaps = s.shadowMaps;
+       }, "shadowMaps[1].viewDepthNear must equal shadowMaps[0].viewDepthFar"},
+      {"cascades out of order", invalid, [](F& f, S& s) {
+         s.shadowMaps.assign(2, s.shadowMaps[0]);
+         s.shadowMaps[0].viewDepthNear = 10.0f;
+         s.shadowMaps[0].viewDepthFar = 50.0f;
+         s.shadowMaps[1].viewDepthNear = 50.0f;
+         s.shadowMaps[1].viewDepthFar = 10.0f;
+         f.shadowMaps = s.shadowMaps;
+       }, "shadowMaps[1].viewDepthNear/viewDepthFar"},
+      {"cascade without a range", invalid, [](F& f, S& s) {
+         s.shadowMaps.assign(3, s.shadowMaps[0]);
+         f.shadowMaps = s.shadowMaps;
+       }, "shadowMaps[0].viewDepthNear/viewDepthFar"},
+      {"cascades on a spot light", invalid, [](F& f, S& s) {
+         f.light.type = LightType::Spot;
+         s.shadowMaps.assign(2, s.shadowMaps[0]);
+         f.shadowMaps = s.shadowMaps;
+       }, "shadowMaps: a spot light needs exactly 1"},
+      {"light-colour texture with cascades", Status::UnsupportedFeature, [](F& f, S& s) {
+         s.shadowMaps.assign(2, s.shadowMaps[0]);
+         s.shadowMaps[0].viewDepthFar = 10.0f;
+         s.shadowMaps[1].viewDepthNear = 10.0f;
+         s.shadowMaps[1].viewDepthFar = 50.0f;
+         f.shadowMaps = s.shadowMaps;
+         f.lightColor = f.color;
+       }, "lightColor: a light with cascades"},
       {"zero depth extent", invalid, [](F& f, S&) { f.depth.extent = {0, 0}; }},
       {"null depth view", invalid, [](F& f, S&) { f.depth.view = VK_NULL_HANDLE; }},
       {"null back buffer", invalid, [](F& f, S&) { f.color.image = VK_NULL_HANDLE; }},

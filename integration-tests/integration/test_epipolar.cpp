@@ -497,7 +497,7 @@ TEST(EpipolarPasses, FollowTheFrame) {
 }
 
 // A point light's samples are all walked through its six maps (no slice line to march along), and
-// the walks cross a block of TYN_EPIPOLAR_POINT_SHADOW_BLOCK² texels in one step where the block
+// the walks cross a block of TYN_EPIPOLAR_WALKED_SHADOW_BLOCK² texels in one step where the block
 // decides all its texels (epipolar/block_walk.glsl): its frame builds the blocks of the six maps
 // before the first march, once, and the note says so. A spot light's samples march along their
 // slices' trees and its fix-up keeps the Reference's per-part quadrature: no blocks. (That the

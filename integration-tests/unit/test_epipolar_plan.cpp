@@ -83,7 +83,7 @@ TEST(EpipolarPlan, APointLightWalksBlocksOfItsSixMapsAndASpotLightNone) {
   const EpipolarFramePlan point = planEpipolarFrame(TestFrame(LightType::Point, 1000).frame, EpipolarSettings{}, kExtent);
   EXPECT_EQ(point.stats.march, EpipolarMarch::PointLightBlockWalk);
   EXPECT_EQ(point.treeSamples, 0u);
-  const std::uint32_t side = (1000 + gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK - 1) / gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK;
+  const std::uint32_t side = (1000 + gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK - 1) / gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK;
   EXPECT_EQ(point.shadowBlocks.width, side);
   EXPECT_EQ(point.shadowBlocks.height, 6 * side);
 
@@ -98,6 +98,22 @@ TEST(EpipolarPlan, APointLightWalksBlocksOfItsSixMapsAndASpotLightNone) {
   const EpipolarFramePlan coloured = planEpipolarFrame(spot.frame, EpipolarSettings{}, kExtent);
   EXPECT_EQ(coloured.colorSamples, coloured.treeSamples);
   EXPECT_EQ(coloured.constants.colored_chunk, EpipolarSettings{}.coloredStep);
+}
+
+TEST(EpipolarPlan, CascadesWalkBlocksOfEachCascadeWithoutATree) {
+  TestFrame t(LightType::Directional, 1024);
+  t.frame.shadowMaps = std::span<const ShadowMapDesc>(t.maps.data(), 3);
+  const EpipolarFramePlan plan = planEpipolarFrame(t.frame, EpipolarSettings{}, kExtent);
+  EXPECT_EQ(plan.stats.march, EpipolarMarch::CascadeBlockWalk);
+  EXPECT_EQ(plan.treeSamples, 0u);
+  EXPECT_EQ(plan.constants.tree_enabled, 0u);
+  const std::uint32_t side = 1024 / gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK;
+  EXPECT_EQ(plan.shadowBlocks.width, side);
+  EXPECT_EQ(plan.shadowBlocks.height, 3 * side);
+  EXPECT_NE(epipolarNote(plan.stats).find("cascades"), std::string::npos) << epipolarNote(plan.stats);
+  // One map is not a cascade: the tree as before.
+  t.frame.shadowMaps = std::span<const ShadowMapDesc>(t.maps.data(), 1);
+  EXPECT_EQ(planEpipolarFrame(t.frame, EpipolarSettings{}, kExtent).stats.march, EpipolarMarch::MinMaxTree);
 }
 
 TEST(EpipolarPlan, TheSlicesCoverTheWholeBorderAroundAnOnScreenEpipole) {

@@ -39,6 +39,16 @@ TEST(TechniqueSelection, PrefilteredFallsBackToEpipolarForLocalLightsAndLightCol
   EXPECT_EQ(s.change, TechniqueChange::PrefilteredHasNoLightColor);
   coloured.requested = Technique::Epipolar;
   EXPECT_EQ(selectTechnique(coloured).change, TechniqueChange::None);
+
+  TechniqueRequest cascades = request(Technique::Prefiltered);
+  cascades.cascades = true;
+  EXPECT_EQ(selectTechnique(cascades).technique, Technique::Epipolar);
+  EXPECT_EQ(selectTechnique(cascades).change, TechniqueChange::PrefilteredNeedsOneShadowMap);
+  for (Technique t : {Technique::Reference, Technique::Epipolar}) {
+    cascades.requested = t;
+    EXPECT_EQ(selectTechnique(cascades).technique, t);
+    EXPECT_EQ(selectTechnique(cascades).change, TechniqueChange::None);
+  }
 }
 
 TEST(TechniqueSelection, OutputsUnderTwoByTwoRunTheReferenceInsteadOfEpipolar) {

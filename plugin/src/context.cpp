@@ -491,7 +491,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     choices[i] = &profileChoice(profile, lightClassOf(light.light.type));
     requestedTechniques[i] = frame.technique != Technique::None ? frame.technique : choices[i]->technique;
     selections[i] = selectTechnique({requestedTechniques[i], light.light.type, !light.lightColor.empty(), extent,
-                                     light.skipped == LightSkipped::No});
+                                     light.skipped == LightSkipped::No,
+                                     light.light.type == LightType::Directional && light.shadowMaps.size() > 1});
     if (lead == lightCount && selections[i].technique != Technique::None) lead = i;
   }
   if (lead == lightCount) lead = 0;

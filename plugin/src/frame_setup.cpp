@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <string>
 
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "epipolar/epipolar_technique.h"
@@ -29,7 +31,10 @@ static_assert(offsetof(gpu::FrameConstants, output_extent) == 8 * 64 + 64 + 4 * 
 static_assert(offsetof(gpu::FrameConstants, has_light_color) == 8 * 64 + 64 + 4 * 32 + 32 + 12);
 static_assert(offsetof(gpu::FrameConstants, target_extent) == 8 * 64 + 64 + 4 * 32 + 48);
 static_assert(offsetof(gpu::FrameConstants, target_offset) == 8 * 64 + 64 + 4 * 32 + 48 + 12);
-static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 32 + 4 * 16,
+static_assert(offsetof(gpu::FrameConstants, cascade_far) == 8 * 64 + 64 + 4 * 32 + 64);
+static_assert(offsetof(gpu::FrameConstants, view_depth_axis) == 8 * 64 + 64 + 4 * 32 + 80);
+static_assert(kMaxCascades == gpu::TYN_MAX_CASCADES && kMaxCascades <= kMaxShadowMaps);
+static_assert(sizeof(gpu::FrameConstants) == 2 * 64 + 6 * 64 + 4 * 16 + 4 * 32 + 4 * 16 + 2 * 16,
               "FrameConstants must match its std140 layout");
 static_assert(kMaxMediumComponents == gpu::TYN_MAX_MEDIUM_COMPONENTS);
 static_assert(kMaxShadowMaps == gpu::TYN_MAX_SHADOW_MAPS);
@@ -140,8 +145,13 @@ Outcome checkLight(const LightDesc& light, std::uint32_t shadowMapCount, const s
   }
   switch (light.type) {
     case LightType::Directional:
+      if (shadowMapCount < 1 || shadowMapCount > kMaxCascades) {
+        return invalid("shadowMaps: a directional light needs 1 to " + std::to_string(kMaxCascades) +
+                       " shadow maps (cascades), got " + std::to_string(shadowMapCount));
+      }
+      break;
     case LightType::Spot:
-      if (shadowMapCount != 1) return invalid("shadowMaps: a directional or spot light needs exactly 1 shadow map");
+      if (shadowMapCount != 1) return invalid("shadowMaps: a spot light needs exactly 1 shadow map");
       break;
     case LightType::Point:
       if (shadowMapCount != 6) return invalid("shadowMaps: a point light needs exactly 6 shadow maps (cube faces)");
@@ -169,6 +179,25 @@ Outcome checkMedium(std::span<const MediumComponent> medium) {
   return {};
 }
 
+// A directional light's cascades: each a range 0 ≤ near < far, each starting exactly where the one
+// before ends (the host hands both sides the same split value, so equality is exact).
+Outcome checkCascades(const LightSetup& light, const std::string& prefix) {
+  if (light.light.type != LightType::Directional || light.shadowMaps.size() < 2) return {};
+  for (std::size_t i = 0; i < light.shadowMaps.size(); ++i) {
+    const ShadowMapDesc& map = light.shadowMaps[i];
+    const std::string name = prefix + "shadowMaps[" + std::to_string(i) + "]";
+    if (!std::isfinite(map.viewDepthNear) || !std::isfinite(map.viewDepthFar) || map.viewDepthNear < 0.0f ||
+        !(map.viewDepthFar > map.viewDepthNear)) {
+      return invalid(name + ".viewDepthNear/viewDepthFar must be finite with 0 <= near < far (a cascade's view depths)");
+    }
+    if (i > 0 && map.viewDepthNear != light.shadowMaps[i - 1].viewDepthFar) {
+      return invalid(name + ".viewDepthNear must equal shadowMaps[" + std::to_string(i - 1) +
+                     "].viewDepthFar: cascades are ordered, finest first, and touch (no gap, no overlap)");
+    }
+  }
+  return {};
+}
+
 // A light's colour texture and shadow maps; `prefix` as for checkLight.
 Outcome checkLightImages(const Gpu& gpu, const LightSetup& light, const std::string& prefix) {
   if (!light.lightColor.empty()) {
@@ -180,6 +209,9 @@ Outcome checkLightImages(const Gpu& gpu, const LightSetup& light, const std::str
     }
     if (light.light.type == LightType::Point) {
       return failure(Status::UnsupportedFeature, prefix + "lightColor: a point light has no single map to lay it over");
+    }
+    if (light.shadowMaps.size() > 1) {
+      return failure(Status::UnsupportedFeature, prefix + "lightColor: a light with cascades has no single map to lay it over");
     }
   }
   const std::uint32_t mapSize = light.shadowMaps.empty() ? 0 : light.shadowMaps[0].depth.extent.width;
@@ -194,11 +226,11 @@ Outcome checkLightImages(const Gpu& gpu, const LightSetup& light, const std::str
       return invalid(name + ".worldToShadowClip must be finite and invertible");
     }
   }
-  return {};
+  return checkCascades(light, prefix);
 }
 
-// This light's fields of the constants.
-void setLightConstants(const LightSetup& l, gpu::FrameConstants& k) {
+// This light's fields of the constants; `worldToView` gives its cascades' view depths.
+void setLightConstants(const LightSetup& l, const glm::dmat4& worldToView, gpu::FrameConstants& k) {
   for (std::size_t i = 0; i < l.shadowMaps.size(); ++i) {
     k.world_to_shadow[i] = glm::make_mat4(l.shadowMaps[i].worldToShadowClip.data());
   }
@@ -214,6 +246,12 @@ void setLightConstants(const LightSetup& l, gpu::FrameConstants& k) {
   k.shadow_map_count = static_cast<std::uint32_t>(l.shadowMaps.size());
   k.shadow_map_size = l.shadowMaps.empty() ? 0 : l.shadowMaps[0].depth.extent.width;
   k.has_light_color = l.lightColor.empty() ? 0u : 1u;
+  // View depth is −z in view space: row 2 of the world → view matrix, negated.
+  k.view_depth_axis = -glm::vec4(glm::row(worldToView, 2));
+  k.cascade_far = glm::vec4(std::numeric_limits<float>::max());
+  if (light.type == LightType::Directional) {
+    for (std::size_t i = 0; i + 1 < l.shadowMaps.size(); ++i) k.cascade_far[int(i)] = l.shadowMaps[i].viewDepthFar;
+  }
 }
 
 }  // namespace
@@ -324,7 +362,7 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   const bool mediumScatters = glm::length(scattering) > 0.0f;
   for (LightSetup& l : out.lights) {
     l.constants = k;
-    setLightConstants(l, l.constants);
+    setLightConstants(l, toMat(frame.camera.view), l.constants);
     const LightDesc& light = l.light;
     if (!(light.intensity > 0.0f && glm::length(glm::vec3(toVec(light.color))) > 0.0f)) {
       l.skipped = LightSkipped::Off;

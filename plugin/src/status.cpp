@@ -59,6 +59,7 @@ const char* to_string(TechniqueChange change) noexcept {
     case TechniqueChange::NothingScatters: return "nothing-scatters";
     case TechniqueChange::PrefilteredNeedsDirectionalLight: return "prefiltered-needs-directional-light";
     case TechniqueChange::PrefilteredHasNoLightColor: return "prefiltered-has-no-light-color";
+    case TechniqueChange::PrefilteredNeedsOneShadowMap: return "prefiltered-needs-one-shadow-map";
     case TechniqueChange::EpipolarNeeds2x2: return "epipolar-needs-2x2";
   }
   return "unknown";

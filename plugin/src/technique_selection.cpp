@@ -7,12 +7,14 @@ TechniqueSelection selectTechnique(const TechniqueRequest& request) {
   // buffer (DESIGN.md "Model only what the scene requires").
   if (!request.scatters) return {Technique::None, TechniqueChange::NothingScatters};
   TechniqueSelection s{request.requested, TechniqueChange::None};
-  // Rectified shadow maps are built for directional lights only, and a light-colour texture
-  // varies along the light rays a rectified texel averages over.
+  // Rectified shadow maps are built for directional lights only, from one map, and a light-colour
+  // texture varies along the light rays a rectified texel averages over.
   if (s.technique == Technique::Prefiltered && request.light != LightType::Directional) {
     s = {Technique::Epipolar, TechniqueChange::PrefilteredNeedsDirectionalLight};
   } else if (s.technique == Technique::Prefiltered && request.hasLightColor) {
     s = {Technique::Epipolar, TechniqueChange::PrefilteredHasNoLightColor};
+  } else if (s.technique == Technique::Prefiltered && request.cascades) {
+    s = {Technique::Epipolar, TechniqueChange::PrefilteredNeedsOneShadowMap};
   }
   // Epipolar lines need a screen at least two pixels wide and high.
   if (s.technique == Technique::Epipolar && (request.extent.width < 2 || request.extent.height < 2)) {
@@ -30,6 +32,8 @@ const char* techniqueChangeNote(TechniqueChange change) {
     case TechniqueChange::PrefilteredNeedsDirectionalLight:
       return "prefiltered supports directional lights only: epipolar instead";
     case TechniqueChange::PrefilteredHasNoLightColor: return "prefiltered has no light-colour texture: epipolar instead";
+    case TechniqueChange::PrefilteredNeedsOneShadowMap:
+      return "prefiltered rectifies one shadow map, not cascades: epipolar instead";
     case TechniqueChange::EpipolarNeeds2x2: return "output smaller than 2x2: Reference instead of epipolar";
   }
   return "";

@@ -12,6 +12,7 @@ struct TechniqueRequest {
   bool hasLightColor = false;
   VkExtent2D extent{};
   bool scatters = true;  ///< σ_s > 0 and the light on (FrameSetup::scatters)
+  bool cascades = false;  ///< a directional light with more than one shadow map
 };
 
 struct TechniqueSelection {

@@ -9,6 +9,7 @@ TYN_BEGIN
 
 TYN_CONST uint TYN_MAX_MEDIUM_COMPONENTS = 4u;
 TYN_CONST uint TYN_MAX_SHADOW_MAPS = 6u;
+TYN_CONST uint TYN_MAX_CASCADES = 4u;  // a directional light's cascaded shadow maps
 
 TYN_CONST uint TYN_LIGHT_DIRECTIONAL = 0u;
 TYN_CONST uint TYN_LIGHT_SPOT = 1u;
@@ -78,7 +79,7 @@ struct FrameConstants {
   float sky_distance;      // with far_at_infinity: the distance of the sky (scene units)
   uint light_type;         // TYN_LIGHT_*
   uint medium_component_count;
-  uint shadow_map_count;   // 1, or 6 for a point light
+  uint shadow_map_count;   // 1 (spot), 1..4 cascades (directional) or 6 (point)
   uint shadow_map_size;    // texels along each side of every map
   uvec2 output_extent;     // pixels
   uint pad2;
@@ -88,6 +89,11 @@ struct FrameConstants {
   uvec2 target_extent;
   uint target_stride;      // 1, 2 or 4
   uint target_offset;      // target_stride / 2: the block's pixel right and below its centre
+  // A directional light's cascades (shadow_map_count > 1): cascade i serves view depths up to
+  // cascade_far[i] (i < count − 1; the last serves everything beyond). View depth of a world point
+  // p: dot(view_depth_axis.xyz, p) + view_depth_axis.w.
+  vec4 cascade_far;
+  vec4 view_depth_axis;
 };
 
 TYN_END

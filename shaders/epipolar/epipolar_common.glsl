@@ -22,11 +22,17 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SAMPLE_SCATTERING, rgba32f) unifo
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_OUT_SCATTERING, rgba32f) uniform image2D out_scattering;
 // Nearest and farthest depth per block of tyn_shadow_block_size()² texels of each shadow map,
 // map m's in rows [m · side, (m + 1) · side) (shadow_blocks.comp), for a directional light's fix-up
-// and a point light's march and fix-up (block_walk.glsl); 1 × 1 otherwise.
+// and the march and fix-up of a light whose maps are walked (block_walk.glsl); 1 × 1 otherwise.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SHADOW_BLOCKS, rg32f) uniform image2D shadow_blocks;
-// Texels along a block's side: a point light's (six maps) or a directional light's.
+
+// A light whose view rays have no single slice line, so that every sample walks its maps with the
+// Reference's texel walk: a point light (six maps) and a directional light with cascades (a ray
+// crosses several maps, each with its own projection of the slice).
+bool tyn_epipolar_walks_maps() { return frame.light_type == TYN_LIGHT_POINT || frame.shadow_map_count > 1u; }
+
+// Texels along a block's side: a walked light's or a directional light's fix-up's.
 int tyn_shadow_block_size() {
-  return int(frame.light_type == TYN_LIGHT_POINT ? TYN_EPIPOLAR_POINT_SHADOW_BLOCK : TYN_EPIPOLAR_SHADOW_BLOCK);
+  return int(tyn_epipolar_walks_maps() ? TYN_EPIPOLAR_WALKED_SHADOW_BLOCK : TYN_EPIPOLAR_SHADOW_BLOCK);
 }
 // Pixels the unwarp could not interpolate, count first (read back for the stats).
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_LIST, std430) buffer FixupList {

@@ -47,10 +47,10 @@ TYN_CONST uint TYN_EPIPOLAR_TREE_MAX_SAMPLES = 4096u;
 // fixed-up pixel's ray crosses canopies and the ground below them, where only small blocks decide.
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK = 4u;
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_GROUP = 8u;
-// The same for a point light's six maps, whose blocks its march walks for every sample: its rays
-// cross wide open space lit by the lamp, where large blocks decide (beyond 32 the march gains
-// little).
-TYN_CONST uint TYN_EPIPOLAR_POINT_SHADOW_BLOCK = 32u;
+// The same for the lights whose march walks its maps for every sample (a point light's six
+// maps, a directional light's cascades; tyn_epipolar_walks_maps): their rays cross wide open
+// space, where large blocks decide (beyond 32 a point light's march gains little).
+TYN_CONST uint TYN_EPIPOLAR_WALKED_SHADOW_BLOCK = 32u;
 // The blocks are built when at least one pixel per this many texels of the map's side is fixed up.
 // A walk crosses about a map side of texels and the blocks pass reads side² of them, so the
 // threshold scales with the side; the pass pays for itself from about a side / 4 pixels.

@@ -23,10 +23,11 @@
 #include "epipolar/block_walk.glsl"
 #include "epipolar/fixup_steps.glsl"
 
-// Whether this frame built the blocks: a point light's before the march, whenever the frame has
-// a block image; a directional light's where the unwarp found them worth building.
+// Whether this frame built the blocks: a walked light's (point, cascades) before the march,
+// whenever the frame has a block image; a directional light's where the unwarp found them worth
+// building.
 bool tyn_shadow_blocks_built() {
-  return TYN_LIGHT_TYPE == TYN_LIGHT_POINT ? epipolar.shadow_block_side != 0u : shadow_block_groups[0] != 0u;
+  return tyn_epipolar_walks_maps() ? epipolar.shadow_block_side != 0u : shadow_block_groups[0] != 0u;
 }
 #define TYN_SCATTERING_LUT_FETCH(texel) imageLoad(scattering_lut, texel).rgb
 #define TYN_SCATTERING_LUT_FRAME

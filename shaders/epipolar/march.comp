@@ -9,7 +9,8 @@
 // (min_max_tree.h, tyn_min_max_add_colored), each integrated uncoloured times the light's mean
 // colour over it from the slice's prefix sums (light_color_sums.h; yusov2013 "Colored Light
 // Shafts" walks them at the fine step instead). Point lights
-// (six maps, no single line) and slices without a line in the map use the Reference's texel walk,
+// (six maps, no single line), a directional light's cascades (one line per map) and slices
+// without a line in the map use the Reference's texel walk,
 // with its lit sections integrated from the same table (TYN_WALK_LIT_SECTIONS); a point light's
 // walk crosses its maps block by block where a block decides all its texels (block_walk.glsl).
 #extension GL_GOOGLE_include_directive : require
@@ -18,9 +19,9 @@
 #define TYN_WALK_SHADOW_BLOCKS
 #include "epipolar/block_walk.glsl"
 
-// A point light's frame builds its six maps' blocks before the march (EpipolarTechnique::record);
-// a directional light's are built after it, for the fix-up, if at all.
-bool tyn_shadow_blocks_built() { return TYN_LIGHT_TYPE == TYN_LIGHT_POINT && epipolar.shadow_block_side != 0u; }
+// A walked light's frame (point, cascades) builds its maps' blocks before the march
+// (EpipolarTechnique::record); a directional light's are built after it, for the fix-up, if at all.
+bool tyn_shadow_blocks_built() { return tyn_epipolar_walks_maps() && epipolar.shadow_block_side != 0u; }
 
 // Specialised per light-colour texture: with one, lit sections are integrated chunk by chunk.
 layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
@@ -138,10 +139,10 @@ vec3 tyn_march_entry(uvec2 id, uint part) {
   if (coordinates.w <= 0.5) return vec3(0.0);
   vec3 origin = frame.view_to_world[3].xyz;
   vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
-  // A point light (six maps, no slice line), slices without a line in the map and rays along the
-  // light: the Reference's texel walk.
-  vec4 origin_direction = frame.light_type != TYN_LIGHT_POINT ? imageLoad(slice_uv, ivec2(id.y, 0))
-                                                              : vec4(TYN_EPIPOLAR_INVALID_COORD);
+  // A light whose maps are walked (no slice line), slices without a line in the map and rays along
+  // the light: the Reference's texel walk.
+  vec4 origin_direction = !tyn_epipolar_walks_maps() ? imageLoad(slice_uv, ivec2(id.y, 0))
+                                                     : vec4(TYN_EPIPOLAR_INVALID_COORD);
   bool along_slice = tyn_slice_valid(origin_direction);
   TynSliceRay sr;
   if (along_slice) {

@@ -283,18 +283,18 @@ void main() {
     tyn_slice_end_points(epipolar.epipole, exit_point, extent, end_points);
     imageStore(slice_end_points, ivec2(slice, 0), end_points);
     tyn_end_points = end_points;
-    // A point light marches no slice line (six maps).
-    vec4 line = frame.light_type != TYN_LIGHT_POINT ? tyn_slice_line(end_points) : vec4(TYN_EPIPOLAR_INVALID_COORD);
-    if (frame.light_type != TYN_LIGHT_POINT) imageStore(slice_uv, ivec2(slice, 0), line);
+    // A light whose maps are walked marches no slice line (tyn_epipolar_walks_maps).
+    vec4 line = !tyn_epipolar_walks_maps() ? tyn_slice_line(end_points) : vec4(TYN_EPIPOLAR_INVALID_COORD);
+    if (!tyn_epipolar_walks_maps()) imageStore(slice_uv, ivec2(slice, 0), line);
     tyn_origin_direction = line;
   }
   barrier();
   vec4 end_points = tyn_end_points;
   vec4 origin_direction = tyn_origin_direction;
   // Uniform across the workgroup: the march reads no tree or sums of a slice without a line.
-  bool tree = frame.light_type != TYN_LIGHT_POINT && epipolar.tree_enabled != 0u;
+  bool tree = !tyn_epipolar_walks_maps() && epipolar.tree_enabled != 0u;
   if (tree && tyn_slice_valid(origin_direction)) tyn_build_tree(int(slice), origin_direction);
-  if (frame.light_type != TYN_LIGHT_POINT && epipolar.colored_chunk != 0u && tyn_slice_valid(origin_direction)) {
+  if (!tyn_epipolar_walks_maps() && epipolar.colored_chunk != 0u && tyn_slice_valid(origin_direction)) {
     tyn_build_color_sums(int(slice), origin_direction);
   }
 

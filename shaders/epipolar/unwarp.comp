@@ -206,8 +206,9 @@ void tyn_unwarp(uvec2 target_pixel) {
 // Where a directional light's frame has a block image (EpipolarConstants::shadow_block_side) it also
 // sizes the shadow-map blocks pass (shadow_blocks.comp): the blocks read the whole map, a cost the
 // fix-up's block steps repay only when it walks enough rays (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS);
-// otherwise zero groups, and the fix-up walks texel by texel or in steps. A point light's blocks
-// are built before the march, which walks every sample: the groups written here for one are not read.
+// otherwise zero groups, and the fix-up walks texel by texel or in steps. A walked light's blocks
+// (point, cascades) are built before the march, which walks every sample: the groups written here
+// for one are not read.
 void tyn_size_fixup() {
   uint flagged = atomicAdd(fixup_count, 0u);
   uint groups = TYN_FIXUP_SERIAL ? (flagged + TYN_EPIPOLAR_FIXUP_GROUP - 1u) / TYN_EPIPOLAR_FIXUP_GROUP : flagged;

@@ -22,6 +22,7 @@ enum class EpipolarMarch : std::uint32_t {
   CellsTreeOff,        ///< cell by cell: EpipolarSettings::minMaxTree is off
   CellsMapTooLarge,    ///< cell by cell: the shadow map is larger than the tree supports (4096²)
   PointLightBlockWalk, ///< a point light: the texel walk across blocks of its six maps
+  CascadeBlockWalk,    ///< a directional light's cascades: the texel walk across blocks of each cascade
 };
 
 struct EpipolarStats {
@@ -100,6 +101,7 @@ enum class TechniqueChange : std::uint32_t {
   NothingScatters,                   ///< σ_s = 0 or the light off: L_in cleared, the back buffer attenuated
   PrefilteredNeedsDirectionalLight,  ///< prefiltered asked for a spot or point light: epipolar ran
   PrefilteredHasNoLightColor,        ///< prefiltered asked with a light-colour texture: epipolar ran
+  PrefilteredNeedsOneShadowMap,      ///< prefiltered asked for a light with cascades: epipolar ran
   EpipolarNeeds2x2,                  ///< epipolar asked for an output under 2×2: the Reference ran
 };
 const char* to_string(TechniqueChange change) noexcept;

@@ -196,6 +196,7 @@ struct MediumComponent {
 
 inline constexpr std::uint32_t kMaxMediumComponents = 4;
 inline constexpr std::uint32_t kMaxShadowMaps = 6;  ///< a point light's six frusta
+inline constexpr std::uint32_t kMaxCascades = 4;    ///< a directional light's cascaded shadow maps
 inline constexpr std::uint32_t kMaxLights = 8;      ///< FrameDesc::light and up to 7 additional lights
 
 struct ShadowMapDesc {
@@ -206,6 +207,12 @@ struct ShadowMapDesc {
   /// World → shadow clip, depth in [0, 1], x/y in [−1, 1]; texel (i, j) covers u = (x + 1) / 2 in
   /// [i / N, (i + 1) / N], v likewise with row j.
   Mat4 worldToShadowClip{};
+  /// A directional light's cascade (2..kMaxCascades maps, finest first): the view depths
+  /// [viewDepthNear, viewDepthFar) it serves, scene units along the camera's −Z. Each cascade
+  /// starts where the one before ends; the first also serves what is nearer, the last what is
+  /// farther. Ignored with one map and for spot and point lights (docs/INTEGRATION.md "Cascades").
+  float viewDepthNear = 0.0f;
+  float viewDepthFar = 0.0f;
 };
 
 /// A light after the frame's first (FrameDesc::additionalLights): the same three inputs the first
@@ -220,7 +227,7 @@ struct FrameDesc {
   CameraDesc camera;
   LightDesc light;
   std::span<const MediumComponent> medium;    ///< 1..kMaxMediumComponents; σ_t is their sum
-  std::span<const ShadowMapDesc> shadowMaps;  ///< 1 (directional, spot) or 6 (point)
+  std::span<const ShadowMapDesc> shadowMaps;  ///< 1..kMaxCascades (directional), 1 (spot), 6 (point)
   ImageRef depth;  ///< host depth buffer: outputExtent, a shadow-map depth format, usage SAMPLED
   /// Host back buffer (scene-linear HDR or _SRGB), outputExtent, usage COLOR_ATTACHMENT, a format
   /// with COLOR_ATTACHMENT_BLEND (e.g. R16G16B16A16_SFLOAT, B8G8R8A8_SRGB).
@@ -232,8 +239,8 @@ struct FrameDesc {
   DebugView debugView = DebugView::None;  ///< optional, written to `debugOutput` (the AOVs' requirements)
   ImageRef debugOutput;
   /// Optional light-colour texture (stained glass, yusov2013): a linear-RGB filter over
-  /// shadowMaps[0]'s UV square (bilinear, clamped; unfiltered outside). Directional and spot lights;
-  /// a point light fails with UnsupportedFeature. Any format with SAMPLED_IMAGE_FILTER_LINEAR
+  /// shadowMaps[0]'s UV square (bilinear, clamped; unfiltered outside). Directional lights with
+  /// one map and spot lights; cascades or a point light fail with UnsupportedFeature. Any format with SAMPLED_IMAGE_FILTER_LINEAR
   /// (_SRGB is decoded), usage SAMPLED, any size. Costs more: lit sections are walked in short steps.
   ImageRef lightColor;
   /// Optional: more lights, up to kMaxLights − 1. L_in is the sum over `light` and these; each runs

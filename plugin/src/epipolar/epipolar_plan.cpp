@@ -54,9 +54,10 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.fixup_weight_threshold = settings.fixupWeightThreshold;
   k.epipole_block_radius = epipoleBlockRadius(settings, extent.height);
   // Directional and spot lights march along each slice's line in shadow map 0; a point light's
-  // rays cross six maps, so its samples take the Reference's walk. The tree's level 0 lives in
-  // the build pass's shared memory, which bounds L (maps larger than 4096² march every cell).
-  if (light.type != LightType::Point) {
+  // rays cross six maps and a directional light's cascades several, so their samples take the
+  // Reference's walk. The tree's level 0 lives in the build pass's shared memory, which bounds L
+  // (maps larger than 4096² march every cell).
+  if (!walksMaps(light.type, static_cast<std::uint32_t>(frame.shadowMaps.size()))) {
     const int samples = gpu::tyn_min_max_sample_count(static_cast<int>(frame.shadowMaps[0].depth.extent.width));
     const bool tree = settings.minMaxTree && samples <= static_cast<int>(gpu::TYN_EPIPOLAR_TREE_MAX_SAMPLES);
     const int topLevel = std::min(gpu::tyn_min_max_level_for_max_step(static_cast<int>(settings.maxTreeStep)),
@@ -73,8 +74,10 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
 }
 
 // How the epipolar technique marches this frame, for the stats.
-EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light) {
+EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light,
+                            std::uint32_t mapCount) {
   if (light == LightType::Point) return EpipolarMarch::PointLightBlockWalk;
+  if (walksMaps(light, mapCount)) return EpipolarMarch::CascadeBlockWalk;
   if (k.tree_enabled != 0) return EpipolarMarch::MinMaxTree;
   return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
 }
@@ -90,7 +93,11 @@ std::string epipolarNote(const EpipolarStats& s) {
     case EpipolarMarch::CellsMapTooLarge: note = "; shadow map above 4096^2: march without the min/max tree"; break;
     case EpipolarMarch::PointLightBlockWalk:
       note = "; point light: samples marched with the texel walk across blocks of " +
-             std::to_string(gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK) + "^2 texels (no single slice line)";
+             std::to_string(gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK) + "^2 texels (no single slice line)";
+      break;
+    case EpipolarMarch::CascadeBlockWalk:
+      note = "; cascades: samples marched with the texel walk across blocks of " +
+             std::to_string(gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK) + "^2 texels of each cascade (no min/max tree)";
       break;
   }
   if (s.sliceBorderFraction >= 1.0f) return note;
@@ -109,18 +116,20 @@ EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettin
   plan.stats = EpipolarStats{settings.slices,
                              settings.samplesPerSlice,
                              k.epipole_density,
-                             epipolarMarch(k, settings, frame.light.type),
+                             epipolarMarch(k, settings, frame.light.type,
+                                           static_cast<std::uint32_t>(frame.shadowMaps.size())),
                              arc.fraction,
                              arc.cone,
                              arc.screen};
   plan.treeSamples = k.tree_enabled != 0 ? k.tree_samples : 0;
   // The light-colour texture's sums along the slices' lines, for the march along them.
   plan.colorSamples = k.colored_chunk != 0 ? k.tree_samples : 0;
-  plan.stats.coloredChunkCells = frame.light.type != LightType::Point ? k.colored_chunk : 0;
-  // The blocks the walks cross (block_walk.glsl): a point light's march walks every sample; a
+  const bool walked = walksMaps(frame.light.type, static_cast<std::uint32_t>(frame.shadowMaps.size()));
+  plan.stats.coloredChunkCells = !walked ? k.colored_chunk : 0;
+  // The blocks the walks cross (block_walk.glsl): a walked light's march walks every sample; a
   // directional light's fix-up only where it walks texel by texel (not in steps).
-  const bool walked = frame.light.type == LightType::Point || settings.fixupSteps == 0;
-  plan.shadowBlocks = !frame.shadowMaps.empty() && walked
+  const bool blocks = walked || settings.fixupSteps == 0;
+  plan.shadowBlocks = !frame.shadowMaps.empty() && blocks
                           ? shadowBlockExtent(frame.light.type, frame.shadowMaps[0].depth.extent.width,
                                               static_cast<std::uint32_t>(frame.shadowMaps.size()))
                           : VkExtent2D{0, 0};

@@ -68,11 +68,15 @@ std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + 
 
 }  // namespace
 
+bool walksMaps(LightType light, std::uint32_t mapCount) {
+  return light == LightType::Point || (light == LightType::Directional && mapCount > 1);
+}
+
 VkExtent2D shadowBlockExtent(LightType light, std::uint32_t mapSize, std::uint32_t mapCount) {
   if (light == LightType::Spot || mapSize == 0 || mapCount == 0) return {0, 0};
   // shaders/epipolar/epipolar_common.glsl, tyn_shadow_block_size.
   const std::uint32_t block =
-      light == LightType::Point ? gpu::TYN_EPIPOLAR_POINT_SHADOW_BLOCK : gpu::TYN_EPIPOLAR_SHADOW_BLOCK;
+      walksMaps(light, mapCount) ? gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK : gpu::TYN_EPIPOLAR_SHADOW_BLOCK;
   const std::uint32_t side = groups(mapSize, block);
   return {side, side * mapCount};
 }
@@ -316,6 +320,7 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, Techni
   if (Outcome o = prepareScatteringTable(gpu, in.frame, buildTable_); !o) return o;
   constants_ = plan.constants;
   light_ = in.frame.light.type;
+  walksMaps_ = walksMaps(light_, static_cast<std::uint32_t>(in.frame.shadowMaps.size()));
   report.epipolar = plan.stats;
   report.note = epipolarNote(plan.stats);
   return {};
@@ -606,9 +611,9 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
       gpu.cmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
     });
   }
-  // A point light's samples are all walked through its six maps (no slice line): their blocks
-  // first, so that the walks cross every block that decides its texels in one step.
-  if (shadowBlocksUsed_ && light == LightType::Point) {
+  // A walked light's samples (point, cascades: no slice line) are all walked through its maps:
+  // their blocks first, so that the walks cross every block that decides its texels in one step.
+  if (shadowBlocksUsed_ && walksMaps_) {
     const std::uint32_t side = shadowBlocks_.extent.width;
     pass("epipolar_shadow_blocks", owner.shadowBlocksPipeline_, [&] {
       gpu.cmdDispatch(cmd, groups(side, gpu::TYN_EPIPOLAR_SHADOW_BLOCK_GROUP),
@@ -617,7 +622,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   }
   // With a tree, samples whose whole ray it shows in shadow get zero without being marched; the
   // test's last group sizes the march's first round.
-  if (light != LightType::Point && constants.tree_enabled != 0) {
+  if (!walksMaps_ && constants.tree_enabled != 0) {
     indirectPass("epipolar_shadow_test", owner.shadowTestPipeline_, textures_.marchList.buffer, kShadowTestArgsOffset);
   }
   // One thread per listed sample, sized on the GPU; a second round for the samples the intensity
@@ -635,7 +640,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   });
   // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
   // enough rays to repay the blocks; the unwarp decides, zero groups otherwise.
-  if (shadowBlocksUsed_ && light == LightType::Directional) {
+  if (shadowBlocksUsed_ && light == LightType::Directional && !walksMaps_) {
     indirectPass("epipolar_shadow_blocks", owner.shadowBlocksPipeline_, fixupArgs_.buffer, kDispatchArgsBytes);
   }
 

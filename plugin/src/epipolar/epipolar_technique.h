@@ -21,10 +21,15 @@ namespace tyndall {
 
 /// The block image (shaders/epipolar/shadow_blocks.comp) for `mapCount` shadow maps of `mapSize`²
 /// texels: the blocks along each side of a map wide, the maps' blocks stacked one under another.
-/// A directional light's fix-up and a point light's march and fix-up walk the blocks
-/// (block_walk.glsl); a spot light's march runs along its slices' min/max trees instead, and its
-/// fix-up keeps the Reference's per-part quadrature: 0 × 0.
+/// A directional light's fix-up and the march and fix-up of a light whose maps are walked
+/// (walksMaps: point, cascades) walk the blocks (block_walk.glsl); a spot light's march runs along
+/// its slices' min/max trees instead, and its fix-up keeps the Reference's per-part quadrature: 0 × 0.
 VkExtent2D shadowBlockExtent(LightType light, std::uint32_t mapSize, std::uint32_t mapCount);
+
+/// Whether every sample of the light walks its maps with the Reference's texel walk, for want of a
+/// single slice line: a point light's six maps, a directional light's cascades
+/// (shaders/epipolar/epipolar_common.glsl, tyn_epipolar_walks_maps).
+bool walksMaps(LightType light, std::uint32_t mapCount);
 
 /// Checks an EpipolarSettings' every field; the message names the field.
 Outcome validateEpipolarSettings(const EpipolarSettings& settings);
@@ -159,6 +164,7 @@ class EpipolarTechnique final : public ScatteringTechnique {
   // This frame's plan (prepare → record).
   gpu::EpipolarConstants constants_{};
   LightType light_ = LightType::Directional;
+  bool walksMaps_ = false;  // walksMaps() of this frame's light
   bool buildTable_ = false;
 };
 

@@ -18,6 +18,7 @@ HOST_CONST int kHostLightDirectional = 0;
 HOST_CONST int kHostLightSpot = 1;
 HOST_CONST int kHostLightPoint = 2;
 HOST_CONST int kHostMaxShadowMaps = 6;
+HOST_CONST int kHostMaxCascades = 4;  // a directional light's maps (kMaxSceneCascades)
 
 // Push constants of the shadow and G-buffer passes.
 struct MeshPush {
@@ -44,11 +45,18 @@ struct LightingParams {
   // x: 1 for the second and later lights of a scene, drawn with additive blending over the first:
   // they add their direct light only (no sky, no ambient). 0 for the first light.
   ivec4 additive;
+  // A directional light's cascades (mode.y > 1 maps, finest first), element c for cascade c:
+  // cascadeFar[c] is the view depth (scene units along the camera's −Z) where cascade c ends and
+  // c + 1 begins (HostShadowMap::viewDepthFar); cascadeFootprint[c] is the world size of one texel
+  // of map c, in scene units (what shadow.x is for a single map).
+  vec4 cascadeFar;
+  vec4 cascadeFootprint;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(MeshPush) == 64);
-static_assert(sizeof(LightingParams) == 7 * 64 + 10 * 16);
+static_assert(sizeof(LightingParams) == 7 * 64 + 12 * 16);
+static_assert(kHostMaxCascades <= kHostMaxShadowMaps);
 }  // namespace tyndall::host::gpu
 #undef HOST_CONST
 #endif

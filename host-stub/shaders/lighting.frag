@@ -20,9 +20,10 @@ layout(location = 0) out vec4 outColor;
 
 // Every depth convention has clip z = P22·z + P32 and clip w = −z, so z = −P32 / (depth + P22):
 // exact for standard/reverse and finite/infinite far alike, no matrix inverse in float.
-vec3 host_world_position(vec2 fragCoord, float depth) {
+float host_view_z(float depth) { return -params.projection.w / (depth + params.projection.z); }
+
+vec3 host_world_position(vec2 fragCoord, float viewZ) {
   vec2 ndc = fragCoord / vec2(params.mode.zw) * 2.0 - 1.0;
-  float viewZ = -params.projection.w / (depth + params.projection.z);
   vec3 viewPos = vec3(ndc.x * -viewZ / params.projection.x, ndc.y * -viewZ / params.projection.y, viewZ);
   return (params.viewToWorld * vec4(viewPos, 1.0)).xyz;
 }
@@ -41,8 +42,18 @@ float host_sample_shadow(int map, vec3 coord) {
   }
 }
 
-// Visibility of the light from the surface point `world` with normal `n` (1 lit, 0 shadowed).
-float host_shadow(vec3 world, vec3 n, vec3 toLight) {
+// A directional light's cascade for a point at `viewDepth` along the camera's −Z: the one whose
+// [near, far) holds it, the first for nearer points and the last for farther ones.
+int host_cascade(float viewDepth) {
+  const int last = params.mode.y - 1;
+  int cascade = 0;
+  while (cascade < last && viewDepth >= params.cascadeFar[cascade]) ++cascade;
+  return cascade;
+}
+
+// Visibility of the light from the surface point `world` at `viewDepth` with normal `n` (1 lit,
+// 0 shadowed).
+float host_shadow(vec3 world, float viewDepth, vec3 n, vec3 toLight) {
   const int type = params.mode.x;
   int map = 0;
   // World-space size of one shadow texel at this point.
@@ -62,6 +73,9 @@ float host_shadow(vec3 world, vec3 n, vec3 toLight) {
     }
   } else if (type == kHostLightSpot) {
     footprint *= max(dot(world - params.lightPosition.xyz, params.lightDirection.xyz), 0.0);
+  } else if (params.mode.y > 1) {  // directional cascades
+    map = host_cascade(viewDepth);
+    footprint = params.cascadeFootprint[map];
   }
 
   // Slope-scaled bias: across the PCF footprint (about one texel either side) a surface tilted
@@ -108,7 +122,8 @@ void main() {
   }
   const vec3 albedo = texelFetch(gAlbedo, px, 0).rgb;
   const vec3 n = normalize(texelFetch(gNormal, px, 0).xyz);
-  const vec3 world = host_world_position(gl_FragCoord.xy, depth);
+  const float viewZ = host_view_z(depth);
+  const vec3 world = host_world_position(gl_FragCoord.xy, viewZ);
 
   const int type = params.mode.x;
   vec3 toLight;
@@ -134,7 +149,7 @@ void main() {
   vec3 light = additive ? vec3(0.0) : params.ambient.rgb;
   const float nDotL = dot(n, toLight);
   if (nDotL > 0.0 && any(greaterThan(irradiance, vec3(0.0)))) {
-    light += irradiance * host_light_color(world) * nDotL * host_shadow(world, n, toLight);
+    light += irradiance * host_light_color(world) * nDotL * host_shadow(world, -viewZ, n, toLight);
   }
   outColor = vec4(albedo * light, 1.0);
 }

@@ -91,6 +91,11 @@ bool makeCamera(const Camera& camera, std::uint32_t width, std::uint32_t height,
   const glm::dvec3 forward = glm::normalize(toTarget);
   const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
   const glm::dvec3 up = glm::cross(right, forward);
+  out.position = camera.position;
+  out.forward = forward;
+  out.nearDepth = n;
+  out.farDepth = f;
+  out.tanHalfFov = {tanHalf * aspect, tanHalf};
   int corner = 0;
   for (double distance : {n, f}) {
     for (double sy : {-1.0, 1.0}) {

@@ -36,6 +36,14 @@ struct CameraSetup {
   glm::dmat4 projection{1.0};  // Vulkan clip, depth [0, 1], y flipped (row 0 = top of the picture)
   // World-space corners of the view frustum: near plane (4), then far plane (4).
   std::array<glm::dvec3, 8> frustumCorners{};
+  // The frustum again, as the cascades split it: frustumCorners' planes lie at view depths
+  // nearDepth and farDepth (the camera's far plane, with an infinite-far projection too), and a
+  // point at view depth d along `forward` from `position` is within ±d·tanHalfFov of the axis.
+  glm::dvec3 position{0.0};
+  glm::dvec3 forward{0.0, 0.0, -1.0};
+  double nearDepth = 0.0;
+  double farDepth = 0.0;
+  glm::dvec2 tanHalfFov{0.0};  // x: horizontal, y: vertical
   float depthClear = 1.0f;
   VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
 };
@@ -83,16 +91,27 @@ bool createMeshPipelineLayout(const vk::GpuContext& gpu, vk::UniquePipelineLayou
 // Shadow frusta
 // ---------------------------------------------------------------------------------------------
 
-struct ShadowViews {
-  std::vector<glm::dmat4> worldToShadowClip;  // 1 (directional, spot) or 6 (point: +X −X +Y −Y +Z −Z)
+// One shadow map of a light: what HostShadowMap hands effects and the lighting pass reads.
+struct ShadowView {
+  glm::dmat4 worldToShadowClip{1.0};
   // World size of one texel: directional, in scene units; spot/point, per unit of distance along
   // the frustum axis (2 tan(fov/2) / N).
   double footprint = 0.0;
+  // A directional light's cascade: the view depths [viewDepthNear, viewDepthFar) it serves (the
+  // first also nearer ones, the last farther ones). 0 and 0 for a single map, spot and point lights.
+  float viewDepthNear = 0.0f;
+  float viewDepthFar = 0.0f;
 };
 
+// 1 (directional, spot), 2..kMaxSceneCascades (a directional light's cascades, finest first) or
+// 6 (point: +X −X +Y −Y +Z −Z).
+using ShadowViews = std::vector<ShadowView>;
+
 /// Fits the light's shadow frusta to the casters and the visible volume (see renderer.h).
-ShadowViews fitShadowViews(const Light& light, const CameraSetup& camera,
-                           const SceneGeometry& geometry, std::uint32_t mapSize);
+/// `cascades` > 1 splits a directional light's map into that many by `cascadeSplit` (λ in
+/// [0, 1]); spot and point lights ignore both.
+ShadowViews fitShadowViews(const Light& light, const CameraSetup& camera, const SceneGeometry& geometry,
+                           std::uint32_t mapSize, std::uint32_t cascades, double cascadeSplit);
 
 /// Depth-only rasterisation of the whole scene into one shadow map (depth clamp on).
 class ShadowPass {
@@ -130,7 +149,7 @@ class LightingPass {
     VkImageView depth = VK_NULL_HANDLE;
     VkImageView albedo = VK_NULL_HANDLE;
     VkImageView normal = VK_NULL_HANDLE;
-    std::vector<VkImageView> shadowMaps;  // 1 or 6
+    std::vector<VkImageView> shadowMaps;  // 1, 2..4 (cascades) or 6
     VkImageView lightColor = VK_NULL_HANDLE;  // the light's colour texture (1×1 white without one)
   };
 

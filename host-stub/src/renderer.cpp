@@ -25,6 +25,7 @@ namespace {
 constexpr glm::vec3 kSkyRadiance{0.02f, 0.03f, 0.05f};
 constexpr glm::vec3 kAmbient{0.02f, 0.03f, 0.05f};
 constexpr std::uint32_t kMaxFramesInFlight = 16;
+static_assert(gpu::kHostMaxCascades == static_cast<int>(kMaxSceneCascades));
 
 // What a frame slot holds for one light.
 struct LightTargets {
@@ -52,6 +53,8 @@ struct FrameSlot {
 struct LightState {
   const Light* light = nullptr;  // into Renderer::Impl::scene
   std::uint32_t shadowMapSize = 0;
+  std::uint32_t cascades = 1;  // a directional light's shadow maps; 1 for spot and point lights
+  double cascadeSplit = 0.8;   // λ of the practical split scheme (Scene::cascadeSplit)
   ShadowViews shadowViews;
   vk::Image color;  // the light's colour texture (R8G8B8A8_SRGB), or 1×1 white without one
 };
@@ -114,11 +117,18 @@ void decodePixels(VkFormat format, const std::uint8_t* data, std::size_t pixelCo
   }
 }
 
+bool inUnitRange(double value) { return value >= 0.0 && value <= 1.0; }
+
 // `name` prefixes the error: "light", or "lights[i]" in a scene with several.
 bool validateLight(const Light& light, const std::string& name, std::string& error) {
   if (!detail::isFinite(light.color) || !std::isfinite(light.intensity) || light.intensity < 0.0 ||
       light.color.x < 0.0 || light.color.y < 0.0 || light.color.z < 0.0) {
     error = name + ": colour and intensity must be finite and >= 0";
+    return false;
+  }
+  // What the scene loader checks, again for lights built in code.
+  if (light.cascades > kMaxSceneCascades || (light.cascadeSplit && !inUnitRange(*light.cascadeSplit))) {
+    error = name + ": shadowMap.cascades must be in [0, 4] (0: the scene's) and shadowMap.cascadeSplit in [0, 1]";
     return false;
   }
   if (light.type == LightType::Directional) {
@@ -127,6 +137,10 @@ bool validateLight(const Light& light, const std::string& name, std::string& err
       return false;
     }
     return true;
+  }
+  if (light.cascades > 1 || light.cascadeSplit) {
+    error = name + ": only directional lights take cascades (shadowMap.cascades, shadowMap.cascadeSplit)";
+    return false;
   }
   if (!detail::isFinite(light.position)) {
     error = name + ": position must be finite";
@@ -252,6 +266,14 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
     error = "image size must be in [1, " + std::to_string(maxSize) + "] in both directions";
     return false;
   }
+  if (settings.cascades > kMaxSceneCascades) {
+    error = "cascades must be in [0, 4] (0: each light's own)";
+    return false;
+  }
+  if (scene.cascades < 1 || scene.cascades > kMaxSceneCascades || !inUnitRange(scene.cascadeSplit)) {
+    error = "shadowMap: cascades must be in [1, 4] and cascadeSplit in [0, 1]";
+    return false;
+  }
   lights.resize(1 + scene.additionalLights.size());
   for (std::size_t i = 0; i < lights.size(); ++i) {
     LightState& state = lights[i];
@@ -267,6 +289,18 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
       return false;
     }
     if (!validateLight(*state.light, name, error)) return false;
+    // The same order of precedence for the cascades, which only directional lights take.
+    const Light& light = *state.light;
+    state.cascades = light.type != LightType::Directional ? 1
+                     : settings.cascades != 0             ? settings.cascades
+                     : light.cascades != 0                ? light.cascades
+                                                          : scene.cascades;
+    state.cascadeSplit = light.cascadeSplit.value_or(scene.cascadeSplit);
+    // The colour texture lies over one map's square (Tyndall's FrameDesc::lightColor likewise).
+    if (state.cascades > 1 && !light.colorTexture.empty()) {
+      error = name + ": a colour texture needs one shadow map, not " + std::to_string(state.cascades) + " cascades";
+      return false;
+    }
   }
   if (!checkFormats(error)) return false;
 
@@ -355,7 +389,7 @@ bool Renderer::Impl::createSlot(FrameSlot& slot, std::string& error) {
                                VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, error)) {
       return false;
     }
-    targets.shadowMaps.resize(lights[i].shadowViews.worldToShadowClip.size());
+    targets.shadowMaps.resize(lights[i].shadowViews.size());
     for (vk::Image& map : targets.shadowMaps) {
       const vk::Image::Desc desc{detail::kShadowFormat, {size, size},
                                  VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
@@ -412,7 +446,8 @@ bool Renderer::Impl::updateViews(std::string& error) {
   }
   // Shadow frusta are fitted to the camera frustum too, whose aspect follows the image.
   for (LightState& state : lights) {
-    state.shadowViews = detail::fitShadowViews(*state.light, camera, geometry, state.shadowMapSize);
+    state.shadowViews =
+        detail::fitShadowViews(*state.light, camera, geometry, state.shadowMapSize, state.cascades, state.cascadeSplit);
   }
   return true;
 }
@@ -423,9 +458,7 @@ void Renderer::Impl::writeParams(FrameSlot& slot) const {
     const ShadowViews& shadowViews = state.shadowViews;
     gpu::LightingParams p{};
     for (std::size_t m = 0; m < 6; ++m) {
-      p.worldToShadowClip[m] = m < shadowViews.worldToShadowClip.size()
-                                   ? glm::mat4(shadowViews.worldToShadowClip[m])
-                                   : glm::mat4(1.0f);
+      p.worldToShadowClip[m] = m < shadowViews.size() ? glm::mat4(shadowViews[m].worldToShadowClip) : glm::mat4(1.0f);
     }
     p.viewToWorld = glm::mat4(glm::inverse(camera.view));
     p.projection = glm::vec4(camera.projection[0][0], camera.projection[1][1], camera.projection[2][2],
@@ -438,14 +471,21 @@ void Renderer::Impl::writeParams(FrameSlot& slot) const {
     p.lightRadiance = glm::vec4(glm::vec3(light.color * light.intensity), 0.0f);
     p.spotCone = glm::vec4(static_cast<float>(std::cos(glm::radians(light.outerConeDegrees))),
                            static_cast<float>(std::cos(glm::radians(light.innerConeDegrees))), 0.0f, 0.0f);
-    p.shadow = glm::vec4(static_cast<float>(shadowViews.footprint), static_cast<float>(state.shadowMapSize), 0.0f,
+    p.shadow = glm::vec4(static_cast<float>(shadowViews[0].footprint), static_cast<float>(state.shadowMapSize), 0.0f,
                          0.0f);
+    if (light.type == LightType::Directional) {
+      for (std::size_t c = 0; c < shadowViews.size(); ++c) {
+        const auto element = static_cast<glm::length_t>(c);
+        p.cascadeFar[element] = shadowViews[c].viewDepthFar;
+        p.cascadeFootprint[element] = static_cast<float>(shadowViews[c].footprint);
+      }
+    }
     p.sky = glm::vec4(kSkyRadiance, camera.depthClear);
     p.ambient = glm::vec4(kAmbient, 0.0f);
     const int type = light.type == LightType::Directional ? gpu::kHostLightDirectional
                      : light.type == LightType::Spot      ? gpu::kHostLightSpot
                                                           : gpu::kHostLightPoint;
-    p.mode = glm::ivec4(type, static_cast<int>(shadowViews.worldToShadowClip.size()),
+    p.mode = glm::ivec4(type, static_cast<int>(shadowViews.size()),
                         static_cast<int>(settings.width), static_cast<int>(settings.height));
     p.additive = glm::ivec4(i == 0 ? 0 : 1, 0, 0, 0);
     std::memcpy(slot.lights[i].params.mapped(), &p, sizeof(p));  // coherent memory: visible at submission
@@ -506,7 +546,7 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
   for (std::size_t light = 0; light < lights.size(); ++light) {
     const std::vector<vk::Image>& maps = slot.lights[light].shadowMaps;
     for (std::size_t i = 0; i < maps.size(); ++i) {
-      shadowPass.record(cmd, geometry, maps[i], glm::mat4(lights[light].shadowViews.worldToShadowClip[i]));
+      shadowPass.record(cmd, geometry, maps[i], glm::mat4(lights[light].shadowViews[i].worldToShadowClip));
     }
   }
   gbufferPass.record(cmd, geometry, slot.depth, slot.albedo, slot.normal,
@@ -635,8 +675,9 @@ bool Renderer::renderFrame(std::string& error) {
   const auto lightImages = [&](std::size_t i, std::vector<HostShadowMap>& maps, HostImage& lightColor) {
     const std::vector<vk::Image>& images = slot.lights[i].shadowMaps;
     for (std::size_t m = 0; m < images.size(); ++m) {
+      const detail::ShadowView& view = r.lights[i].shadowViews[m];
       maps.push_back({hostImage(images[m], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
-                      glm::mat4(r.lights[i].shadowViews.worldToShadowClip[m])});
+                      glm::mat4(view.worldToShadowClip), view.viewDepthNear, view.viewDepthFar});
     }
     if (!r.lights[i].light->colorTexture.empty()) {
       lightColor = hostImage(r.lights[i].color, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

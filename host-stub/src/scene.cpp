@@ -10,6 +10,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <iterator>
+#include <optional>
 #include <string_view>
 
 #include <nlohmann/json.hpp>
@@ -190,18 +191,65 @@ void parseCone(const Json& json, const std::string& path, Light& light) {
   }
 }
 
-std::uint32_t parseShadowMap(const Json& json, const std::string& path) {
-  requireObject(json, path);
-  requireKnownKeys(json, path, {"size"});
-  const std::string sizePath = child(path, "size");
-  const Json& size = requireMember(json, path, "size");
-  if (!size.is_number_integer()) fail(sizePath, "must be an integer");
-  const auto value = size.get<std::int64_t>();
+// What a "shadowMap" object sets; each key is optional and what it leaves out keeps its default
+// (the scene's) or the scene's value (a light's).
+struct ShadowMapFields {
+  std::optional<std::uint32_t> size;
+  std::optional<std::uint32_t> cascades;
+  std::optional<double> cascadeSplit;
+};
+
+std::int64_t toInteger(const Json& value, const std::string& path) {
+  if (!value.is_number_integer()) fail(path, "must be an integer");
+  return value.get<std::int64_t>();
+}
+
+std::uint32_t parseShadowMapSize(const Json& json, const std::string& path) {
+  const std::int64_t value = toInteger(json, path);
   const bool powerOfTwo = value > 0 && (value & (value - 1)) == 0;
   if (!powerOfTwo || value < kMinShadowMapSize || value > kMaxShadowMapSize) {
-    fail(sizePath, "must be a power of two in [16, 16384]");
+    fail(path, "must be a power of two in [16, 16384]");
   }
   return static_cast<std::uint32_t>(value);
+}
+
+ShadowMapFields parseShadowMap(const Json& json, const std::string& path) {
+  requireObject(json, path);
+  requireKnownKeys(json, path, {"size", "cascades", "cascadeSplit"});
+  ShadowMapFields fields;
+  if (const Json* size = findMember(json, "size")) fields.size = parseShadowMapSize(*size, child(path, "size"));
+  if (const Json* cascades = findMember(json, "cascades")) {
+    const std::string cascadesPath = child(path, "cascades");
+    const std::int64_t value = toInteger(*cascades, cascadesPath);
+    if (value < 1 || value > kMaxSceneCascades) fail(cascadesPath, "must be an integer in [1, 4]");
+    fields.cascades = static_cast<std::uint32_t>(value);
+  }
+  if (const Json* split = findMember(json, "cascadeSplit")) {
+    const std::string splitPath = child(path, "cascadeSplit");
+    const double value = toNumber(*split, splitPath);
+    if (!(value >= 0.0 && value <= 1.0)) fail(splitPath, "must be in [0, 1]");
+    fields.cascadeSplit = value;
+  }
+  return fields;
+}
+
+// A light's own "shadowMap": cascades split only a directional light's map, so a spot or point
+// light refuses more than one rather than ignoring it.
+void parseLightShadowMap(const Json& json, const std::string& path, Light& light) {
+  const ShadowMapFields fields = parseShadowMap(json, path);
+  light.shadowMapSize = fields.size.value_or(0);
+  const bool directional = light.type == LightType::Directional;
+  const char* kind = light.type == LightType::Spot ? "a spot light" : "a point light";
+  if (fields.cascades) {
+    if (!directional && *fields.cascades > 1) {
+      fail(child(path, "cascades"), std::string("must be 1 for ") + kind + " (only directional lights take cascades)");
+    }
+    light.cascades = *fields.cascades;
+  }
+  if (fields.cascadeSplit) {
+    if (!directional) fail(child(path, "cascadeSplit"), std::string("is for directional lights, not ") + kind);
+    light.cascadeSplit = fields.cascadeSplit;
+  }
 }
 
 Light parseLight(const Json& json, const std::string& path, const std::filesystem::path& baseDir) {
@@ -236,7 +284,7 @@ Light parseLight(const Json& json, const std::string& path, const std::filesyste
     }
   }
   if (const Json* shadowMap = findMember(json, "shadowMap")) {
-    light.shadowMapSize = parseShadowMap(*shadowMap, child(path, "shadowMap"));
+    parseLightShadowMap(*shadowMap, child(path, "shadowMap"), light);
   }
   return light;
 }
@@ -403,7 +451,10 @@ Scene parseSceneJson(const Json& json, const std::filesystem::path& baseDir) {
   scene.medium = parseMedium(requireMember(json, "", "medium"));
   scene.objects = parseObjects(requireMember(json, "", "objects"), baseDir);
   if (const Json* shadowMap = findMember(json, "shadowMap")) {
-    scene.shadowMapSize = parseShadowMap(*shadowMap, "shadowMap");
+    const ShadowMapFields fields = parseShadowMap(*shadowMap, "shadowMap");
+    scene.shadowMapSize = fields.size.value_or(scene.shadowMapSize);
+    scene.cascades = fields.cascades.value_or(scene.cascades);
+    scene.cascadeSplit = fields.cascadeSplit.value_or(scene.cascadeSplit);
   }
   return scene;
 }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -803,6 +804,167 @@ TEST_F(HostStub, ShadowMapHoldsTheNearestSurfaceAtTheDocumentedTexel) {
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Cascaded shadow maps (a directional light's "shadowMap": {"cascades": K})
+// ---------------------------------------------------------------------------------------------
+
+// samples/scenes/colonnade.json: a 300 m avenue seen from eye height, far plane 400 m, 4 cascades.
+Scene colonnadeScene() {
+  const SceneLoadResult loaded = loadScene(std::filesystem::path(TYNDALL_SCENES_DIR) / "colonnade.json");
+  EXPECT_TRUE(loaded.scene.has_value()) << loaded.error;
+  return loaded.scene.value_or(Scene{});
+}
+
+// The corners of the view frustum's cross-section at view depth `depth` (pixelRay's basis).
+std::vector<glm::dvec3> frustumSection(const Camera& camera, double aspect, double depth) {
+  const glm::dvec3 forward = glm::normalize(camera.target - camera.position);
+  const glm::dvec3 right = glm::normalize(glm::cross(forward, camera.up));
+  const glm::dvec3 up = glm::cross(right, forward);
+  const double t = std::tan(glm::radians(camera.fovYDegrees) * 0.5);
+  std::vector<glm::dvec3> corners;
+  for (double sx : {-1.0, 1.0}) {
+    for (double sy : {-1.0, 1.0}) {
+      corners.push_back(camera.position + depth * (forward + right * (sx * t * aspect) + up * (sy * t)));
+    }
+  }
+  return corners;
+}
+
+TEST_F(HostStub, CascadesSplitTheViewDepthsInOrderAndCoverTheirSlices) {
+  const Scene scene = colonnadeScene();
+  ASSERT_EQ(scene.cascades, 4u);
+  const RenderSettings settings = smallSettings();
+  ProbeEffect probe;
+  probe.writeOutputs = false;
+  render(scene, settings, 1, {&probe});
+  ASSERT_EQ(probe.seen.size(), 1u);
+  const std::vector<HostShadowMap>& maps = probe.seen[0].shadowMaps;
+  ASSERT_EQ(maps.size(), 4u);
+
+  const double n = scene.camera.nearPlane;
+  const double f = scene.camera.farPlane;
+  const double lambda = scene.cascadeSplit;
+  EXPECT_GE(maps[0].viewDepthNear, 0.0f);
+  EXPECT_LE(maps[0].viewDepthNear, n);
+  EXPECT_EQ(maps[3].viewDepthFar, static_cast<float>(f));
+  const double aspect = static_cast<double>(settings.width) / settings.height;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    SCOPED_TRACE("cascade " + std::to_string(i));
+    const HostShadowMap& map = maps[i];
+    EXPECT_EQ(map.depth.extent.width, scene.shadowMapSize);
+    EXPECT_LT(map.viewDepthNear, map.viewDepthFar);
+    if (i + 1 < maps.size()) {
+      EXPECT_EQ(map.viewDepthFar, maps[i + 1].viewDepthNear);  // the same float: no gap, no overlap
+      // Zhang et al. 2006's practical split scheme, in double precision.
+      const double x = static_cast<double>(i + 1) / static_cast<double>(maps.size());
+      const double split = lambda * n * std::pow(f / n, x) + (1.0 - lambda) * (n + (f - n) * x);
+      EXPECT_NEAR(map.viewDepthFar, split, 1e-6 * split);
+    }
+    // The whole slice of the frustum lies inside the map's square, nearer than its depth 1.
+    for (double depth : {std::max<double>(map.viewDepthNear, n), static_cast<double>(map.viewDepthFar)}) {
+      for (const glm::dvec3& corner : frustumSection(scene.camera, aspect, depth)) {
+        const glm::vec4 clip = map.worldToShadowClip * glm::vec4(glm::vec3(corner), 1.0f);
+        EXPECT_LE(std::max(std::abs(clip.x), std::abs(clip.y)), 1.0f) << "depth " << depth;
+        EXPECT_LE(clip.z, 1.0f) << "depth " << depth;
+      }
+    }
+  }
+
+  // RenderSettings::cascades (--cascades) overrides a directional light's count; spot lights keep one map.
+  RenderSettings three = smallSettings();
+  three.cascades = 3;
+  probe.seen.clear();
+  render(directionalScene(), three, 1, {&probe});
+  ASSERT_EQ(probe.seen.size(), 1u);
+  ASSERT_EQ(probe.seen[0].shadowMaps.size(), 3u);
+  EXPECT_EQ(probe.seen[0].shadowMaps[2].viewDepthFar, static_cast<float>(directionalScene().camera.farPlane));
+  probe.seen.clear();
+  render(spotScene(), three, 1, {&probe});
+  ASSERT_EQ(probe.seen.size(), 1u);
+  ASSERT_EQ(probe.seen[0].shadowMaps.size(), 1u);
+  EXPECT_EQ(probe.seen[0].shadowMaps[0].viewDepthFar, 0.0f);  // not a cascade
+}
+
+// The lighting pass picks each point's cascade by its view depth: the analytic scene's ground, lit
+// and shadowed, comes out as with one map.
+TEST_F(HostStub, CascadedDirectionalLightMatchesAnalyticShadingAndShadows) {
+  const Scene scene = directionalScene();
+  RenderSettings settings = smallSettings();
+  settings.cascades = 4;
+  const ImageRgba32f image = render(scene, settings);
+  EXPECT_TRUE(allFinite(image));
+  const GroundCheck check = checkGround(scene, image);
+  EXPECT_GE(check.lit, 300);
+  EXPECT_GE(check.shadowed, 20);
+  EXPECT_EQ(check.failures, 0) << check.firstFailure;
+}
+
+// Stable cascades: as the camera walks along the avenue, each map's texel grid stays where it is in
+// the world. The world → shadow matrices keep their x/y rows (axes and texel size) and their x/y
+// offsets change by whole texels only (2/N in clip space).
+TEST_F(HostStub, CascadeTexelGridsStayFixedInTheWorldAsTheCameraMoves) {
+  const Scene scene = colonnadeScene();
+  ProbeEffect probe;
+  probe.writeOutputs = false;
+  std::string error;
+  std::unique_ptr<Renderer> renderer = Renderer::create(*device_, scene, smallSettings(), error);
+  ASSERT_NE(renderer, nullptr) << error;
+  renderer->addPostProcess(&probe);
+  ASSERT_TRUE(renderer->renderFrame(error)) << error;
+  Camera moved = scene.camera;
+  const glm::dvec3 step(0.0, 0.0, -3.3);  // a few strides down the avenue
+  moved.position += step;
+  moved.target += step;
+  ASSERT_TRUE(renderer->setCamera(moved, error)) << error;
+  ASSERT_TRUE(renderer->renderFrame(error)) << error;
+  renderer->waitIdle();
+  ASSERT_EQ(probe.seen.size(), 2u);
+  ASSERT_EQ(probe.seen[0].shadowMaps.size(), 4u);
+  ASSERT_EQ(probe.seen[1].shadowMaps.size(), 4u);
+
+  const double halfSize = 0.5 * scene.shadowMapSize;
+  for (std::size_t i = 0; i < 4; ++i) {
+    SCOPED_TRACE("cascade " + std::to_string(i));
+    const glm::mat4& before = probe.seen[0].shadowMaps[i].worldToShadowClip;
+    const glm::mat4& after = probe.seen[1].shadowMaps[i].worldToShadowClip;
+    double largestShift = 0.0;
+    for (glm::length_t row = 0; row < 2; ++row) {
+      for (glm::length_t column = 0; column < 3; ++column) EXPECT_EQ(before[column][row], after[column][row]);
+      const double texels = (static_cast<double>(after[3][row]) - before[3][row]) * halfSize;
+      EXPECT_NEAR(texels, std::round(texels), 1e-3) << (row == 0 ? "x" : "y");
+      largestShift = std::max(largestShift, std::abs(texels));
+    }
+    EXPECT_GE(largestShift, 1.0) << "the map did not follow the camera";
+  }
+}
+
+// A sanity check of the lit image: cascades move shadow edges, they do not relight the scene. Here
+// the one 1024² map has texels of 20 × 5 cm, the four cascades 4 cm near the camera to 75 cm at the
+// far end (a sphere's square, not the casters' footprint), and the edges that move shift the mean by
+// 2.2% on lavapipe at 160×90.
+TEST_F(HostStub, OneAndFourCascadesLightTheColonnadeAlike) {
+  const Scene scene = colonnadeScene();
+  RenderSettings settings = smallSettings();
+  settings.width = 160;
+  settings.height = 90;
+  settings.cascades = 1;
+  const ImageRgba32f one = render(scene, settings, 1);
+  settings.cascades = 4;
+  const ImageRgba32f four = render(scene, settings, 1);
+  ASSERT_EQ(one.pixels.size(), four.pixels.size());
+  double sumOne = 0.0;
+  double sumFour = 0.0;
+  for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+    if (i % 4 == 3) continue;
+    sumOne += one.pixels[i];
+    sumFour += four.pixels[i];
+  }
+  EXPECT_NE(one.pixels, four.pixels) << "the cascades changed nothing";
+  const double values = 0.75 * static_cast<double>(one.pixels.size());
+  std::printf("[ colonnade, 160x90 ] mean RGB, 1 cascade: %.5f, 4 cascades: %.5f\n", sumOne / values, sumFour / values);
+  EXPECT_NEAR(sumFour / sumOne, 1.0, 0.03);
+}
+
 TEST_F(HostStub, FramesInFlightCountDoesNotChangeTheImage) {
   const Scene scene = spotScene();
   const ImageRgba32f reference = render(scene, smallSettings(), 3);
@@ -926,6 +1088,32 @@ TEST_F(HostStub, BadSettingsFailWithAReason) {
   error.clear();
   EXPECT_EQ(Renderer::create(*device_, wideSpot, smallSettings(), error), nullptr);
   EXPECT_NE(error.find("80"), std::string::npos) << error;
+
+  settings = smallSettings();
+  settings.cascades = 5;
+  error.clear();
+  EXPECT_EQ(Renderer::create(*device_, scene, settings, error), nullptr);
+  EXPECT_NE(error.find("cascades must be in [0, 4]"), std::string::npos) << error;
+
+  Scene noCascade = directionalScene();
+  noCascade.cascades = 0;
+  error.clear();
+  EXPECT_EQ(Renderer::create(*device_, noCascade, smallSettings(), error), nullptr);
+  EXPECT_NE(error.find("shadowMap: cascades must be in [1, 4]"), std::string::npos) << error;
+
+  Scene cascadedSpot = spotScene();
+  cascadedSpot.light.cascades = 2;
+  error.clear();
+  EXPECT_EQ(Renderer::create(*device_, cascadedSpot, smallSettings(), error), nullptr);
+  EXPECT_NE(error.find("only directional lights take cascades"), std::string::npos) << error;
+
+  // A colour texture lies over one map's square (the file is not read before this check).
+  Scene stainedSun = directionalScene();
+  stainedSun.light.colorTexture = "stained-glass.png";
+  stainedSun.cascades = 2;
+  error.clear();
+  EXPECT_EQ(Renderer::create(*device_, stainedSun, smallSettings(), error), nullptr);
+  EXPECT_NE(error.find("colour texture needs one shadow map"), std::string::npos) << error;
 
   Scene badCamera = directionalScene();
   badCamera.camera.target = badCamera.camera.position;

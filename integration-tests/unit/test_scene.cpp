@@ -120,6 +120,17 @@ TEST(SceneLoading, SampleScenesHaveTheirDocumentedContent) {
     EXPECT_EQ(lamp.shadowMapSize, 1024u);
     EXPECT_LT(lamp.direction.y, -0.99);  // hanging over the street, pointing down
   }
+  const Scene colonnade = load("colonnade.json");
+  EXPECT_EQ(colonnade.light.type, LightType::Directional);
+  EXPECT_EQ(colonnade.cascades, 4u);
+  EXPECT_EQ(colonnade.shadowMapSize, 1024u);
+  EXPECT_DOUBLE_EQ(colonnade.camera.farPlane, 400.0);
+  EXPECT_DOUBLE_EQ(colonnade.camera.position.y, 1.7);  // eye height
+  EXPECT_EQ(colonnade.objects.size(), 61u);  // the ground and two rows of 30 pillars
+  for (const Object& object : colonnade.objects) {
+    // What the CPU analytic reference computes: planes, boxes and spheres.
+    EXPECT_NE(object.type, ObjectType::Gltf);
+  }
   const Scene mixed = load("analytic-mixed.json");
   ASSERT_EQ(mixed.medium.size(), 2u);
   EXPECT_EQ(mixed.medium[0].phase, PhaseType::Rayleigh);
@@ -230,6 +241,65 @@ TEST(SceneLoading, PerLightShadowMapSizeOverridesTheScenes) {
   parts = SceneParts{};
   parts.light = R"({"type": "directional", "direction": [0, -1, 0], "intensity": 1, "shadowMap": {"size": 4096}})";
   EXPECT_EQ(parseOrFail(parts.text()).light.shadowMapSize, 4096u);
+}
+
+TEST(SceneLoading, CascadesDefaultToOneMapAndTheSplitTo0_8) {
+  const Scene scene = parseOrFail(SceneParts{}.text());  // "shadowMap": {"size": 1024}
+  EXPECT_EQ(scene.cascades, 1u);
+  EXPECT_DOUBLE_EQ(scene.cascadeSplit, 0.8);
+  EXPECT_EQ(scene.light.cascades, 0u);  // the scene's
+  EXPECT_FALSE(scene.light.cascadeSplit.has_value());
+
+  SceneParts parts;
+  parts.extra = "";
+  EXPECT_EQ(parseOrFail(parts.text()).cascades, 1u);
+}
+
+TEST(SceneLoading, ParsesCascadesAndTheirSplit) {
+  SceneParts parts;
+  parts.extra = R"(, "shadowMap": {"size": 512, "cascades": 3, "cascadeSplit": 0.5})";
+  const Scene scene = parseOrFail(parts.text());
+  EXPECT_EQ(scene.shadowMapSize, 512u);
+  EXPECT_EQ(scene.cascades, 3u);
+  EXPECT_DOUBLE_EQ(scene.cascadeSplit, 0.5);
+
+  // Every key of "shadowMap" is optional: the size keeps its default.
+  parts.extra = R"(, "shadowMap": {"cascades": 4})";
+  const Scene cascadesOnly = parseOrFail(parts.text());
+  EXPECT_EQ(cascadesOnly.shadowMapSize, 2048u);
+  EXPECT_EQ(cascadesOnly.cascades, 4u);
+  EXPECT_DOUBLE_EQ(cascadesOnly.cascadeSplit, 0.8);
+
+  // The ends of the ranges.
+  parts.extra = R"(, "shadowMap": {"cascades": 1, "cascadeSplit": 0})";
+  EXPECT_DOUBLE_EQ(parseOrFail(parts.text()).cascadeSplit, 0.0);
+  parts.extra = R"(, "shadowMap": {"cascades": 4, "cascadeSplit": 1})";
+  EXPECT_DOUBLE_EQ(parseOrFail(parts.text()).cascadeSplit, 1.0);
+}
+
+TEST(SceneLoading, PerLightCascadesOverrideTheScenes) {
+  SceneParts parts;
+  parts.lightKey = "lights";
+  parts.light = R"([{"type": "directional", "direction": [0, -1, 0], "intensity": 1,
+                     "shadowMap": {"cascades": 4, "cascadeSplit": 0.25}},
+                    {"type": "directional", "direction": [1, -1, 0], "intensity": 1},
+                    {"type": "directional", "direction": [0, -1, 1], "intensity": 1, "shadowMap": {"size": 256}},
+                    {"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 1,
+                     "shadowMap": {"cascades": 1}}])";
+  parts.extra = R"(, "shadowMap": {"size": 1024, "cascades": 2, "cascadeSplit": 0.6})";
+  const Scene scene = parseOrFail(parts.text());
+  EXPECT_EQ(scene.cascades, 2u);
+  EXPECT_DOUBLE_EQ(scene.cascadeSplit, 0.6);
+  EXPECT_EQ(scene.light.cascades, 4u);
+  ASSERT_TRUE(scene.light.cascadeSplit.has_value());
+  EXPECT_DOUBLE_EQ(*scene.light.cascadeSplit, 0.25);
+  EXPECT_EQ(scene.light.shadowMapSize, 0u);  // the scene's size, its own cascades
+  ASSERT_EQ(scene.additionalLights.size(), 3u);
+  EXPECT_EQ(scene.additionalLights[0].cascades, 0u);  // the scene's
+  EXPECT_FALSE(scene.additionalLights[0].cascadeSplit.has_value());
+  EXPECT_EQ(scene.additionalLights[1].shadowMapSize, 256u);
+  EXPECT_EQ(scene.additionalLights[1].cascades, 0u);  // a size alone keeps the scene's cascades
+  EXPECT_EQ(scene.additionalLights[2].cascades, 1u);  // one map, said explicitly, is fine for a spot
 }
 
 TEST(SceneLoading, RelativeGltfPathsResolveAgainstTheSceneFolder) {
@@ -387,6 +457,34 @@ std::vector<BadScene> badScenes() {
        with(&P::light, R"({"type": "directional", "direction": [0, -1, 0], "intensity": 1, "shadowMap": {"sizes": 64}})"),
        "light.shadowMap.sizes is an unknown key"},
       {"NaNLiteral", with(&P::extra, R"(, "shadowMap": {"size": NaN})"), "invalid JSON"},
+      {"ZeroCascades", with(&P::extra, R"(, "shadowMap": {"cascades": 0})"), "shadowMap.cascades must be an integer in [1, 4]"},
+      {"FiveCascades", with(&P::extra, R"(, "shadowMap": {"size": 1024, "cascades": 5})"),
+       "shadowMap.cascades must be an integer in [1, 4]"},
+      {"FractionalCascades", with(&P::extra, R"(, "shadowMap": {"cascades": 2.5})"), "shadowMap.cascades must be an integer"},
+      {"CascadeSplitAboveOne", with(&P::extra, R"(, "shadowMap": {"cascades": 2, "cascadeSplit": 1.5})"),
+       "shadowMap.cascadeSplit must be in [0, 1]"},
+      {"CascadeSplitNegative", with(&P::extra, R"(, "shadowMap": {"cascadeSplit": -0.1})"),
+       "shadowMap.cascadeSplit must be in [0, 1]"},
+      {"CascadeSplitString", with(&P::extra, R"(, "shadowMap": {"cascadeSplit": "log"})"),
+       "shadowMap.cascadeSplit must be a number"},
+      {"CascadesOnSpotLight",
+       with(&P::light, R"({"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 1,
+                           "shadowMap": {"cascades": 2}})"),
+       "light.shadowMap.cascades must be 1 for a spot light"},
+      {"CascadesOnPointLight",
+       withLights(R"([{"type": "directional", "direction": [0, -1, 0], "intensity": 1, "shadowMap": {"cascades": 4}},
+                      {"type": "point", "position": [0, 5, 0], "intensity": 1, "shadowMap": {"cascades": 3}}])"),
+       "lights[1].shadowMap.cascades must be 1 for a point light"},
+      {"CascadeSplitOnSpotLight",
+       with(&P::light, R"({"type": "spot", "position": [0, 5, 0], "direction": [0, -1, 0], "intensity": 1,
+                           "shadowMap": {"cascadeSplit": 0.5}})"),
+       "light.shadowMap.cascadeSplit is for directional lights, not a spot light"},
+      {"LightFiveCascades",
+       with(&P::light, R"({"type": "directional", "direction": [0, -1, 0], "intensity": 1, "shadowMap": {"cascades": 5}})"),
+       "light.shadowMap.cascades must be an integer in [1, 4]"},
+      {"LightShadowMapUnknownCascadeKey",
+       with(&P::light, R"({"type": "directional", "direction": [0, -1, 0], "intensity": 1, "shadowMap": {"splits": 4}})"),
+       "light.shadowMap.splits is an unknown key (expected one of: size, cascades, cascadeSplit)"},
       {"OverflowingNumber", with(&P::objects, R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1e999}])"), "invalid JSON"},
   };
 }

@@ -46,6 +46,7 @@ bool parseName(const std::string& name, std::initializer_list<E> values, E& out)
 std::string usage() {
   return "usage: tyndall-render SCENE.json [--profile reference|high|balanced|performance|auto] [--budget-ms B]\n"
          "         [--technique reference|epipolar|prefiltered] [--width W] [--height H] [--shadow-map-size N]\n"
+         "         [--cascades K]\n"
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect] [--no-storage-back-buffer]\n"
@@ -54,6 +55,8 @@ std::string usage() {
          "         [--resolution full|half|quarter]\n"
          "  --resolution: compute L_in at full, half or quarter resolution instead of the profile's (the\n"
          "    composite upsamples it; the Reference always runs at full)\n"
+         "  --cascades: shadow maps per directional light, 1 to 4 cascades splitting the view depths\n"
+         "    (overrides the scene's \"shadowMap\": {\"cascades\": K}; spot and point lights keep one map)\n"
          "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
          "  --no-storage-back-buffer: create the back buffer without STORAGE usage, so Tyndall composites\n"
          "    with a fragment pass instead of a compute pass writing the back buffer in place\n"
@@ -118,6 +121,12 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       if (!value(v)) return false;
       if (!parseUint(v, 16, 16384, options.shadowMapSize) || (options.shadowMapSize & (options.shadowMapSize - 1)) != 0) {
         error = "--shadow-map-size must be a power of two in [16, 16384] (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--cascades") {
+      if (!value(v)) return false;
+      if (!parseUint(v, 1, host::kMaxSceneCascades, options.cascades)) {
+        error = "--cascades must be an integer in [1, 4] (got '" + v + "')";
         return false;
       }
     } else if (arg == "--resolution") {
@@ -211,6 +220,7 @@ host::RenderSettings renderSettingsFor(const RenderOptions& options, bool wantAo
   settings.width = options.width;
   settings.height = options.height;
   settings.shadowMapSize = options.shadowMapSize;
+  settings.cascades = options.cascades;
   settings.depth = options.depth;
   settings.infiniteFar = options.infiniteFar;
   settings.aovImages = wantAovs || !options.aovScattering.empty() || !options.aovTransmittance.empty() ||

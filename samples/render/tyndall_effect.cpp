@@ -9,6 +9,8 @@ namespace tyndall::samples {
 
 namespace {
 
+static_assert(host::kMaxSceneCascades == kMaxCascades);
+
 Mat4 toMat4(const glm::mat4& m) {
   Mat4 out{};
   std::memcpy(out.data(), glm::value_ptr(m), sizeof(out));
@@ -118,7 +120,9 @@ FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, 
   storage.medium = toMedium(scene.medium);
   const auto toShadowMaps = [](const std::vector<host::HostShadowMap>& maps) {
     std::vector<ShadowMapDesc> out;
-    for (const host::HostShadowMap& map : maps) out.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip)});
+    for (const host::HostShadowMap& map : maps) {
+      out.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip), map.viewDepthNear, map.viewDepthFar});
+    }
     return out;
   };
   storage.shadowMaps = toShadowMaps(inputs.shadowMaps);

@@ -59,6 +59,9 @@ struct RenderSettings {
   std::uint32_t height = 360;
   /// Every light's shadow-map size. 0: each light's own shadowMap.size, else the scene's.
   std::uint32_t shadowMapSize = 0;
+  /// Every directional light's cascade count, 1..kMaxSceneCascades. 0: each light's own
+  /// shadowMap.cascades, else the scene's.
+  std::uint32_t cascades = 0;
   DepthConvention depth = DepthConvention::Standard;
   bool infiniteFar = false;         ///< projection with the far plane at infinity
   std::uint32_t framesInFlight = 2; ///< 1..16; each slot has its own command buffer, fence and images
@@ -87,13 +90,24 @@ struct HostShadowMap {
   /// the map, u = (x + 1) / 2 → column u·N, v = (y + 1) / 2 → row v·N. Directional: orthographic,
   /// fitted to the casters that can shadow the visible volume (nearer points clamp to depth 0).
   /// Spot: perspective, fov = 2·(outer cone + 5°). Point: six 90° faces +X −X +Y −Y +Z −Z.
+  /// A directional light's cascade: orthographic over the bounding sphere of its slice of the
+  /// view frustum, centred on a whole texel of a grid fixed in the world.
   glm::mat4 worldToShadowClip{1.0f};
+  /// A directional light's cascade (2..kMaxSceneCascades maps, finest first): the view depths
+  /// [viewDepthNear, viewDepthFar) it serves, scene units along the camera's −Z, split by the
+  /// light's cascadeSplit (else the scene's) over [camera near, camera far]. Cascade i + 1's
+  /// viewDepthNear is cascade i's viewDepthFar (the same float); the first begins at 0, the last
+  /// ends at the camera's far plane (also with an infinite-far projection). 0 and 0 for a single
+  /// map, spot and point lights.
+  float viewDepthNear = 0.0f;
+  float viewDepthFar = 0.0f;
 };
 
 /// A light after the scene's first (Scene::additionalLights), as effects see it.
 struct LightInputs {
   const Light* light = nullptr;           ///< into PostProcessInputs::scene->additionalLights
-  std::vector<HostShadowMap> shadowMaps;  ///< 1 (directional, spot) or 6 (point), at the light's size
+  /// 1 (directional, spot), 1..4 (directional: its cascades) or 6 (point), at the light's size
+  std::vector<HostShadowMap> shadowMaps;
   HostImage lightColor;                   ///< as PostProcessInputs::lightColor, for this light
 };
 
@@ -104,7 +118,8 @@ struct PostProcessInputs {
   glm::mat4 view{1.0f};              ///< world → view (lookAt)
   glm::mat4 projection{1.0f};        ///< Vulkan clip (depth [0,1]), y flipped so image row 0 is the top
   const Scene* scene = nullptr;      ///< light and medium come from here
-  std::vector<HostShadowMap> shadowMaps;  ///< scene->light's: 1 (directional, spot) or 6 (point)
+  /// scene->light's: 1 (directional, spot), 1..4 (directional: its cascades) or 6 (point)
+  std::vector<HostShadowMap> shadowMaps;
   HostImage depth;                   ///< D32_SFLOAT, DEPTH_STENCIL_ATTACHMENT_OPTIMAL
   HostImage color;                   ///< back buffer, COLOR_ATTACHMENT_OPTIMAL, with its usage
   HostImage aovScattering;           ///< RGBA32F, TRANSFER_DST_OPTIMAL, only with aovImages

@@ -38,6 +38,11 @@ struct Light {
   /// Optional "shadowMap": {"size": N}: this light's shadow-map size (a power of two in
   /// [16, 16384]). 0: the scene's shadowMapSize.
   std::uint32_t shadowMapSize = 0;
+  /// Optional "shadowMap": {"cascades": K}: a directional light's cascaded shadow maps, 1..4
+  /// (spot and point lights take 1). 0: the scene's cascades.
+  std::uint32_t cascades = 0;
+  /// Optional "shadowMap": {"cascadeSplit": λ} in [0, 1] (directional lights). Unset: the scene's.
+  std::optional<double> cascadeSplit;
 };
 
 enum class PhaseType { Isotropic, Rayleigh, HenyeyGreenstein, CornetteShanks };
@@ -68,6 +73,8 @@ struct Object {
 /// Lights a scene holds at most ("lights": [LIGHT, …]); tyndall::kMaxLights, which the stub host
 /// does not include.
 inline constexpr std::size_t kMaxSceneLights = 8;
+/// Cascades a directional light takes at most ("shadowMap": {"cascades": K}); tyndall::kMaxCascades.
+inline constexpr std::uint32_t kMaxSceneCascades = 4;
 
 struct Scene {
   Camera camera;
@@ -76,6 +83,12 @@ struct Scene {
   std::vector<MediumComponent> medium;  ///< one or more components
   std::vector<Object> objects;
   std::uint32_t shadowMapSize = 2048;
+  /// "shadowMap": {"cascades": K}: every directional light's cascade count (1..kMaxSceneCascades)
+  /// unless the light sets its own; the maps split the camera's [near, far] (finest first).
+  std::uint32_t cascades = 1;
+  /// "shadowMap": {"cascadeSplit": λ} in [0, 1]: the split depths blend logarithmic (λ = 1) and
+  /// uniform (λ = 0) splits of [near, far] (Zhang et al. 2006, "practical split scheme").
+  double cascadeSplit = 0.8;
   std::filesystem::path sourcePath;     ///< the file it was loaded from (empty if built in code)
 };
 

@@ -175,7 +175,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     return maps;
   };
-  const std::vector<ShadowMapDesc> shadowMaps = readShadowMaps();
+  std::vector<ShadowMapDesc> shadowMaps = readShadowMaps();
   frame.shadowMaps = shadowMaps;
   frame.depth = image(in, output);
   frame.color = image(in, output);
@@ -198,6 +198,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (in.byte() & 1) additional[i].lightColor = image(in, VkExtent2D{16, 16});
   }
   frame.additionalLights = additional;
+  // Cascade ranges of the first light's maps, last for the same reason.
+  if (in.byte() & 1) {
+    for (ShadowMapDesc& map : shadowMaps) {
+      map.viewDepthNear = in.number();
+      map.viewDepthFar = in.number();
+    }
+  }
 
   FrameSetup setup;
   const Outcome outcome = prepareFrame(gpu, output, frame, setup);
@@ -212,14 +219,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   require(!frame.shadowMaps.empty(), "a valid frame without a shadow map");
   const TechniqueSelection selection =
       selectTechnique({frame.technique == Technique::None ? Technique::Epipolar : frame.technique, frame.light.type,
-                       !frame.lightColor.empty(), output, setup.scatters});
+                       !frame.lightColor.empty(), output, setup.scatters, frame.shadowMaps.size() > 1});
   require(selection.technique != Technique::Prefiltered || frame.light.type == LightType::Directional,
           "the prefiltered technique chosen for a local light");
+  require(selection.technique != Technique::Prefiltered || frame.shadowMaps.size() == 1,
+          "the prefiltered technique chosen for cascades");
   require(frame.additionalLights.size() < kMaxLights, "a valid frame with more than kMaxLights lights");
   require(setup.lights.size() == 1 + frame.additionalLights.size(), "a light without its setup");
   for (const LightSetup& light : setup.lights) {
-    require(light.shadowMaps.size() == (light.light.type == LightType::Point ? 6u : 1u),
+    const std::size_t maps = light.shadowMaps.size();
+    require(light.light.type == LightType::Point       ? maps == 6u
+            : light.light.type == LightType::Directional ? maps >= 1u && maps <= kMaxCascades
+                                                         : maps == 1u,
             "a valid light with the wrong number of shadow maps");
+    for (std::size_t i = 1; light.light.type == LightType::Directional && i < maps; ++i) {
+      require(light.shadowMaps[i].viewDepthNear == light.shadowMaps[i - 1].viewDepthFar &&
+                  light.shadowMaps[i].viewDepthFar > light.shadowMaps[i].viewDepthNear,
+              "valid cascades that leave a gap, overlap or run backwards");
+    }
     require(light.light.intensity > 0.0f || light.skipped == LightSkipped::Off, "a light without intensity not skipped");
   }
   return 0;

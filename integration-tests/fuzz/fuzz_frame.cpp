@@ -219,7 +219,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   require(!frame.shadowMaps.empty(), "a valid frame without a shadow map");
   const TechniqueSelection selection =
       selectTechnique({frame.technique == Technique::None ? Technique::Epipolar : frame.technique, frame.light.type,
-                       !frame.lightColor.empty(), output, setup.scatters, frame.shadowMaps.size() > 1});
+                       !frame.lightColor.empty(), output, setup.scatters,
+                       hasCascades(frame.light.type, frame.shadowMaps.size())});
   require(selection.technique != Technique::Prefiltered || frame.light.type == LightType::Directional,
           "the prefiltered technique chosen for a local light");
   require(selection.technique != Technique::Prefiltered || frame.shadowMaps.size() == 1,

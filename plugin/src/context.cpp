@@ -492,7 +492,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     requestedTechniques[i] = frame.technique != Technique::None ? frame.technique : choices[i]->technique;
     selections[i] = selectTechnique({requestedTechniques[i], light.light.type, !light.lightColor.empty(), extent,
                                      light.skipped == LightSkipped::No,
-                                     light.light.type == LightType::Directional && light.shadowMaps.size() > 1});
+                                     hasCascades(light.light.type, light.shadowMaps.size())});
     if (lead == lightCount && selections[i].technique != Technique::None) lead = i;
   }
   if (lead == lightCount) lead = 0;

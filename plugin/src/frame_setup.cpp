@@ -10,6 +10,7 @@
 
 #include "epipolar/epipolar_technique.h"
 #include "prefiltered/prefiltered_technique.h"
+#include "technique_selection.h"
 
 namespace tyndall {
 
@@ -182,7 +183,7 @@ Outcome checkMedium(std::span<const MediumComponent> medium) {
 // A directional light's cascades: each a range 0 ≤ near < far, each starting exactly where the one
 // before ends (the host hands both sides the same split value, so equality is exact).
 Outcome checkCascades(const LightSetup& light, const std::string& prefix) {
-  if (light.light.type != LightType::Directional || light.shadowMaps.size() < 2) return {};
+  if (!hasCascades(light.light.type, light.shadowMaps.size())) return {};
   for (std::size_t i = 0; i < light.shadowMaps.size(); ++i) {
     const ShadowMapDesc& map = light.shadowMaps[i];
     const std::string name = prefix + "shadowMaps[" + std::to_string(i) + "]";

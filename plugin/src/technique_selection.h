@@ -2,9 +2,16 @@
 // design fallbacks that Stats::techniqueChange names. Pure, so that every rule is unit-tested.
 #pragma once
 
+#include <cstddef>
+
 #include "tyndall/tyndall.h"
 
 namespace tyndall {
+
+/// Whether a light's maps are cascades: a directional light's, when it hands more than one.
+inline bool hasCascades(LightType light, std::size_t mapCount) {
+  return light == LightType::Directional && mapCount > 1;
+}
 
 struct TechniqueRequest {
   Technique requested = Technique::None;  ///< the frame's override, else the profile row's
@@ -12,7 +19,7 @@ struct TechniqueRequest {
   bool hasLightColor = false;
   VkExtent2D extent{};
   bool scatters = true;  ///< σ_s > 0 and the light on (FrameSetup::scatters)
-  bool cascades = false;  ///< a directional light with more than one shadow map
+  bool cascades = false;  ///< hasCascades
 };
 
 struct TechniqueSelection {

@@ -24,8 +24,9 @@ float effectiveEpipoleDensity(const EpipolarSettings& settings, LightType light)
 // Push constants of the epipolar passes; the epipole is found here, in C++, by the same code
 // the shaders would run (shaders/epipolar/epipolar_geometry.h).
 // `arc` is the frame's slice arc (slice_arc.h), found from the epipole computed here.
+// `walked`: walksMaps() of the frame's light.
 gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent,
-                                         SliceArc& arc) {
+                                         bool walked, SliceArc& arc) {
   const glm::mat4 viewProj = glm::make_mat4(frame.camera.projection.data()) * glm::make_mat4(frame.camera.view.data());
   const LightDesc& light = frame.light;
   const glm::vec4 lightClip =
@@ -57,7 +58,7 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   // rays cross six maps and a directional light's cascades several, so their samples take the
   // Reference's walk. The tree's level 0 lives in the build pass's shared memory, which bounds L
   // (maps larger than 4096² march every cell).
-  if (!walksMaps(light.type, static_cast<std::uint32_t>(frame.shadowMaps.size()))) {
+  if (!walked) {
     const int samples = gpu::tyn_min_max_sample_count(static_cast<int>(frame.shadowMaps[0].depth.extent.width));
     const bool tree = settings.minMaxTree && samples <= static_cast<int>(gpu::TYN_EPIPOLAR_TREE_MAX_SAMPLES);
     const int topLevel = std::min(gpu::tyn_min_max_level_for_max_step(static_cast<int>(settings.maxTreeStep)),
@@ -75,9 +76,9 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
 
 // How the epipolar technique marches this frame, for the stats.
 EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light,
-                            std::uint32_t mapCount) {
+                            bool walked) {
   if (light == LightType::Point) return EpipolarMarch::PointLightBlockWalk;
-  if (walksMaps(light, mapCount)) return EpipolarMarch::CascadeBlockWalk;
+  if (walked) return EpipolarMarch::CascadeBlockWalk;
   if (k.tree_enabled != 0) return EpipolarMarch::MinMaxTree;
   return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
 }
@@ -111,24 +112,23 @@ std::string epipolarNote(const EpipolarStats& s) {
 EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent) {
   EpipolarFramePlan plan;
   SliceArc arc;
-  plan.constants = epipolarConstants(frame, settings, extent, arc);
+  plan.walksMaps = walksMaps(frame.light.type, static_cast<std::uint32_t>(frame.shadowMaps.size()));
+  plan.constants = epipolarConstants(frame, settings, extent, plan.walksMaps, arc);
   gpu::EpipolarConstants& k = plan.constants;
   plan.stats = EpipolarStats{settings.slices,
                              settings.samplesPerSlice,
                              k.epipole_density,
-                             epipolarMarch(k, settings, frame.light.type,
-                                           static_cast<std::uint32_t>(frame.shadowMaps.size())),
+                             epipolarMarch(k, settings, frame.light.type, plan.walksMaps),
                              arc.fraction,
                              arc.cone,
                              arc.screen};
   plan.treeSamples = k.tree_enabled != 0 ? k.tree_samples : 0;
   // The light-colour texture's sums along the slices' lines, for the march along them.
   plan.colorSamples = k.colored_chunk != 0 ? k.tree_samples : 0;
-  const bool walked = walksMaps(frame.light.type, static_cast<std::uint32_t>(frame.shadowMaps.size()));
-  plan.stats.coloredChunkCells = !walked ? k.colored_chunk : 0;
+  plan.stats.coloredChunkCells = !plan.walksMaps ? k.colored_chunk : 0;
   // The blocks the walks cross (block_walk.glsl): a walked light's march walks every sample; a
   // directional light's fix-up only where it walks texel by texel (not in steps).
-  const bool blocks = walked || settings.fixupSteps == 0;
+  const bool blocks = plan.walksMaps || settings.fixupSteps == 0;
   plan.shadowBlocks = !frame.shadowMaps.empty() && blocks
                           ? shadowBlockExtent(frame.light.type, frame.shadowMaps[0].depth.extent.width,
                                               static_cast<std::uint32_t>(frame.shadowMaps.size()))

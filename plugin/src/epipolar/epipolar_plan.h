@@ -16,6 +16,7 @@ struct EpipolarFramePlan {
   std::uint32_t treeSamples = 0;   ///< 1D samples per slice of the min/max tree; 0: no tree built
   std::uint32_t colorSamples = 0;  ///< the light-colour sums' samples per slice; 0: none
   VkExtent2D shadowBlocks{};       ///< the shadow-map block image (shadowBlockExtent); 0 × 0: none
+  bool walksMaps = false;          ///< walksMaps(): every sample walks the maps, no slice line or tree
 };
 
 /// The frame's plan for `settings` at an output of `extent` (≥ 2 × 2) with `frame`'s light, maps

@@ -9,6 +9,7 @@
 #include "epipolar/epipolar_plan.h"
 #include "epipolar/light_color_sums.h"
 #include "epipolar/scattering_lut.h"
+#include "technique_selection.h"
 #include "tyndall_shaders.h"
 
 namespace tyndall {
@@ -69,7 +70,7 @@ std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + 
 }  // namespace
 
 bool walksMaps(LightType light, std::uint32_t mapCount) {
-  return light == LightType::Point || (light == LightType::Directional && mapCount > 1);
+  return light == LightType::Point || hasCascades(light, mapCount);
 }
 
 VkExtent2D shadowBlockExtent(LightType light, std::uint32_t mapSize, std::uint32_t mapCount) {
@@ -320,7 +321,7 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, Techni
   if (Outcome o = prepareScatteringTable(gpu, in.frame, buildTable_); !o) return o;
   constants_ = plan.constants;
   light_ = in.frame.light.type;
-  walksMaps_ = walksMaps(light_, static_cast<std::uint32_t>(in.frame.shadowMaps.size()));
+  walksMaps_ = plan.walksMaps;
   report.epipolar = plan.stats;
   report.note = epipolarNote(plan.stats);
   return {};

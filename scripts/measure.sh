@@ -48,7 +48,8 @@ epipolar     The epipolar technique's profiles against the Reference in the same
              tables; writes BENCH_OUT (out/bench-epipolar), rows.jsonl among them. SCENES (pillars
              forest window-room spot-lamp), SIZES (1280x720 1920x1080), SHADOW_MAPS (2048 4096),
              PROFILES (high balanced performance), RESOLUTIONS (full; any of full half quarter: each
-             profile also at that resolution, tyndall-render --resolution), FRAMES (12),
+             profile also at that resolution, tyndall-render --resolution), CASCADES (0: each scene's
+             own; K: --cascades K for every render, e.g. "4 1" for colonnade), FRAMES (12),
              REFERENCE_FRAMES (4), RENDER and COMPARE (the programs, default the build's).
 spot         The profiles against the Reference on the spot-light scenes and on each with its lamp a
              point light (same place, same occluders): relative RMSE of L_in per scene, size and
@@ -215,7 +216,7 @@ part_cost() {
 # epipolar: per scene, size and map the Reference, then each profile against it.
 part_epipolar() {
   local render compare out frames reference_frames rows first_scene first_size scene size w h map ref profile run
-  local resolution label reduced
+  local resolution label reduced cascades cascaded
   render="${RENDER:-$(program "$1" tyndall-render)}"
   compare="${COMPARE:-$(program "$1" tyndall-compare)}"
   out="${BENCH_OUT:-out/bench-epipolar}"
@@ -234,22 +235,29 @@ part_epipolar() {
     for size in ${SIZES:-1280x720 1920x1080}; do
       w="$(width_of "$size")"; h="$(height_of "$size")"
       for map in ${SHADOW_MAPS:-2048 4096}; do
-        ref="$out/$scene-$size-$map-reference"
-        "$render" --pipelines on-first-use "samples/scenes/$scene.json" --technique reference --width "$w" --height "$h" \
-          --shadow-map-size "$map" --frames "$reference_frames" --timings "$ref.json" --aov-scattering "$ref.exr" >/dev/null
-        for profile in ${PROFILES:-high balanced performance}; do
-          for resolution in ${RESOLUTIONS:-full}; do
-            # A reduced resolution is named in the tables after the profile ("performance half").
-            label="$profile" run="$out/$scene-$size-$map-$profile" reduced=()
-            if [ "$resolution" != full ]; then
-              label="$profile $resolution" run="$run-$resolution" reduced=(--resolution "$resolution")
-            fi
-            "$render" --pipelines on-first-use "samples/scenes/$scene.json" --profile "$profile" --width "$w" --height "$h" \
-              --shadow-map-size "$map" --frames "$frames" --timings "$run.json" --aov-scattering "$run.exr" \
-              "${reduced[@]}" >/dev/null
-            "$compare" "$run.exr" "$ref.exr" >"$run-error.json"
-            python3 scripts/lib/measure_tables.py epipolar-row "$run.json" "$run-error.json" "$ref.json" "$scene" "$size" \
-              "$map" "$label" >>"$rows"
+        for cascades in ${CASCADES:-0}; do
+          # CASCADES: --cascades K for every render (a directional light's cascades), 0 the scene's.
+          cascaded=() ref="$out/$scene-$size-$map-reference"
+          if [ "$cascades" != 0 ]; then
+            cascaded=(--cascades "$cascades") ref="$out/$scene-$size-${cascades}x$map-reference"
+          fi
+          "$render" --pipelines on-first-use "samples/scenes/$scene.json" --technique reference --width "$w" --height "$h" \
+            --shadow-map-size "$map" "${cascaded[@]}" --frames "$reference_frames" --timings "$ref.json" \
+            --aov-scattering "$ref.exr" >/dev/null
+          for profile in ${PROFILES:-high balanced performance}; do
+            for resolution in ${RESOLUTIONS:-full}; do
+              # A reduced resolution is named in the tables after the profile ("performance half").
+              label="$profile" run="${ref%-reference}-$profile" reduced=()
+              if [ "$resolution" != full ]; then
+                label="$profile $resolution" run="$run-$resolution" reduced=(--resolution "$resolution")
+              fi
+              "$render" --pipelines on-first-use "samples/scenes/$scene.json" --profile "$profile" --width "$w" --height "$h" \
+                --shadow-map-size "$map" "${cascaded[@]}" --frames "$frames" --timings "$run.json" \
+                --aov-scattering "$run.exr" "${reduced[@]}" >/dev/null
+              "$compare" "$run.exr" "$ref.exr" >"$run-error.json"
+              python3 scripts/lib/measure_tables.py epipolar-row "$run.json" "$run-error.json" "$ref.json" "$scene" "$size" \
+                "$map" "$label" --cascades "$cascades" >>"$rows"
+            done
           done
         done
       done

@@ -193,7 +193,8 @@ TEST(Cascades, EachProfileIsWithinItsBarAgainstTheReference) {
     const samples::RenderResult result = renderWithSharedContext(scene, cascadeOptions(profile, 4, 1024));
     ASSERT_EQ(result.stats.technique, Technique::Epipolar);
     ASSERT_TRUE(result.stats.epipolar.has_value());
-    EXPECT_EQ(result.stats.epipolar->march, EpipolarMarch::CascadeBlockWalk) << result.stats.techniqueNote;
+    EXPECT_EQ(result.stats.epipolar->march, EpipolarMarch::MinMaxTree) << result.stats.techniqueNote;
+    EXPECT_EQ(result.stats.epipolar->linesPerSlice, 4u) << result.stats.techniqueNote;
     const ErrorStats e = compareRgb(result.scattering, reference.scattering);
     std::printf("[ colonnade ] %s: %s\n", to_string(profile), describe(e).c_str());
     EXPECT_EQ(e.nonFinite, 0u);

@@ -324,8 +324,9 @@ TEST(EpipolarFixup, StepsApproachTheReference) {
 }
 
 // The min/max tree changes the cost, never the answer (yusov2013: the accelerated march visits
-// the same lit sections): tree on and off agree on every sample scene, directional and spot, and
-// coloured (stained-glass walks its lit nodes chunk by chunk); also with a short maximum step, the
+// the same lit sections): tree on and off agree on every sample scene, directional (colonnade: a
+// tree per cascade) and spot, and coloured (stained-glass walks its lit nodes chunk by chunk);
+// also with a short maximum step, the
 // form in which lavapipe once miscompiled the coloured march (min_max_tree.h).
 struct TreeCase {
   const char* scene;
@@ -373,7 +374,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarTree,
                                            TreeCase{"spot-lamp", kDefaultMaxTreeStep},
                                            TreeCase{"stained-glass", kDefaultMaxTreeStep},
                                            TreeCase{"stained-glass", 2},
-                                           TreeCase{"analytic-mixed", kDefaultMaxTreeStep}),
+                                           TreeCase{"analytic-mixed", kDefaultMaxTreeStep},
+                                           TreeCase{"colonnade", kDefaultMaxTreeStep}),
                          [](const auto& test_param) {
                            std::string name = test_param.param.scene;
                            for (char& ch : name) ch = ch == '-' ? '_' : ch;
@@ -537,7 +539,8 @@ host::Scene behindAWall() {
 }
 
 // A light that reaches no visible point: a wall covering the screen, the light behind it shining
-// at the camera (directional, and a spot light whose cone holds the camera). Only the shadow map
+// at the camera (directional with one map and with four cascades, whose every stretch must be
+// dark, and a spot light whose cone holds the camera). Only the shadow map
 // knows, so the decision is the GPU's: the shadow test finds every listed sample's whole ray in
 // shadow on its slice's tree, lists none for the march, and the march's indirect dispatches run
 // zero groups (the passes stay recorded, empty, like the fix-up's). L_in is then exactly zero, as the Reference's is; T is
@@ -555,14 +558,21 @@ TEST(EpipolarPasses, LightBehindAWallMarchesNothing) {
   spot.outerConeDegrees = 40.0;
   spot.intensity = 30.0;
   const host::Light directional = scene.light;
-  for (const host::Light& light : {directional, spot}) {
-    scene.light = light;
-    const samples::RenderResult walled = renderWithSharedContext(scene, o);
-    samples::RenderOptions ref = o;
+  struct Case {
+    host::Light light;
+    std::uint32_t cascades;
+  };
+  for (const Case& frameCase : {Case{directional, 1}, Case{directional, 4}, Case{spot, 1}}) {
+    scene.light = frameCase.light;
+    samples::RenderOptions lit = o;
+    lit.cascades = frameCase.cascades;
+    const samples::RenderResult walled = renderWithSharedContext(scene, lit);
+    samples::RenderOptions ref = lit;
     ref.technique = Technique::Reference;
     const samples::RenderResult reference = renderWithSharedContext(scene, ref);
-    const bool isSpot = light.type == host::LightType::Spot;
-    SCOPED_TRACE(isSpot ? "spot light" : "directional light");
+    const bool isSpot = frameCase.light.type == host::LightType::Spot;
+    SCOPED_TRACE(isSpot ? "spot light" : "directional light, cascades " + std::to_string(frameCase.cascades));
+    EXPECT_EQ(walled.stats.epipolar.value().linesPerSlice, frameCase.cascades);
 
     const std::vector<std::string>& p = walled.stats.passesRecorded;
     if (isSpot) {

@@ -83,6 +83,7 @@ TEST(EpipolarPlan, APointLightWalksBlocksOfItsSixMapsAndASpotLightNone) {
   const EpipolarFramePlan point = planEpipolarFrame(TestFrame(LightType::Point, 1000).frame, EpipolarSettings{}, kExtent);
   EXPECT_EQ(point.stats.march, EpipolarMarch::PointLightBlockWalk);
   EXPECT_EQ(point.treeSamples, 0u);
+  EXPECT_EQ(point.lineMaps, 0u);
   const std::uint32_t side = (1000 + gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK - 1) / gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK;
   EXPECT_EQ(point.shadowBlocks.width, side);
   EXPECT_EQ(point.shadowBlocks.height, 6 * side);
@@ -92,6 +93,7 @@ TEST(EpipolarPlan, APointLightWalksBlocksOfItsSixMapsAndASpotLightNone) {
   const EpipolarFramePlan s = planEpipolarFrame(spot.frame, EpipolarSettings{}, kExtent);
   EXPECT_EQ(s.stats.march, EpipolarMarch::MinMaxTree);
   EXPECT_EQ(s.shadowBlocks.width, 0u);
+  EXPECT_EQ(s.lineMaps, 1u);
   EXPECT_EQ(s.colorSamples, 0u);
   // A light-colour texture: the march integrates in coloured chunks along the tree's samples.
   spot.frame.lightColor.image = reinterpret_cast<VkImage>(std::uintptr_t{1});
@@ -100,20 +102,30 @@ TEST(EpipolarPlan, APointLightWalksBlocksOfItsSixMapsAndASpotLightNone) {
   EXPECT_EQ(coloured.constants.colored_chunk, EpipolarSettings{}.coloredStep);
 }
 
-TEST(EpipolarPlan, CascadesWalkBlocksOfEachCascadeWithoutATree) {
+TEST(EpipolarPlan, CascadesMarchAlongALineAndTreePerCascade) {
   TestFrame t(LightType::Directional, 1024);
   t.frame.shadowMaps = std::span<const ShadowMapDesc>(t.maps.data(), 3);
   const EpipolarFramePlan plan = planEpipolarFrame(t.frame, EpipolarSettings{}, kExtent);
-  EXPECT_EQ(plan.stats.march, EpipolarMarch::CascadeBlockWalk);
-  EXPECT_EQ(plan.treeSamples, 0u);
-  EXPECT_EQ(plan.constants.tree_enabled, 0u);
-  const std::uint32_t side = 1024 / gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK;
-  EXPECT_EQ(plan.shadowBlocks.width, side);
-  EXPECT_EQ(plan.shadowBlocks.height, 3 * side);
-  EXPECT_NE(epipolarNote(plan.stats).find("cascades"), std::string::npos) << epipolarNote(plan.stats);
-  // One map is not a cascade: the tree as before.
+  EXPECT_EQ(plan.stats.march, EpipolarMarch::MinMaxTree);
+  EXPECT_FALSE(plan.walksMaps);
+  EXPECT_EQ(plan.lineMaps, 3u);
+  EXPECT_EQ(plan.stats.linesPerSlice, 3u);
+  EXPECT_EQ(plan.treeSamples, static_cast<std::uint32_t>(gpu::tyn_min_max_sample_count(1024)));
+  EXPECT_EQ(plan.constants.tree_enabled, 1u);
+  // The fix-up's blocks, when it walks texel by texel, cover every cascade.
+  EpipolarSettings texelWalk;
+  texelWalk.fixupSteps = 0;
+  const EpipolarFramePlan walked = planEpipolarFrame(t.frame, texelWalk, kExtent);
+  const std::uint32_t side = 1024 / gpu::TYN_EPIPOLAR_SHADOW_BLOCK;
+  EXPECT_EQ(walked.shadowBlocks.width, side);
+  EXPECT_EQ(walked.shadowBlocks.height, 3 * side);
+  EXPECT_NE(epipolarNote(plan.stats).find("3 cascades"), std::string::npos) << epipolarNote(plan.stats);
+  // One map is not a cascade: one line, and no word of cascades.
   t.frame.shadowMaps = std::span<const ShadowMapDesc>(t.maps.data(), 1);
-  EXPECT_EQ(planEpipolarFrame(t.frame, EpipolarSettings{}, kExtent).stats.march, EpipolarMarch::MinMaxTree);
+  const EpipolarFramePlan one = planEpipolarFrame(t.frame, EpipolarSettings{}, kExtent);
+  EXPECT_EQ(one.stats.march, EpipolarMarch::MinMaxTree);
+  EXPECT_EQ(one.lineMaps, 1u);
+  EXPECT_EQ(epipolarNote(one.stats).find("cascades"), std::string::npos) << epipolarNote(one.stats);
 }
 
 TEST(EpipolarPlan, TheSlicesCoverTheWholeBorderAroundAnOnScreenEpipole) {

@@ -3,7 +3,8 @@
 tyndall-compare's error JSON: one subcommand per kind of row (measure.sh's parts call them).
 
   prefiltered-row TIMINGS ERROR REFERENCE SCENE VARIANT EVALUATIONS_TSV
-  epipolar-row TIMINGS ERROR REFERENCE SCENE SIZE MAP PROFILE       (a JSON line for rows.jsonl)
+  epipolar-row TIMINGS ERROR REFERENCE SCENE SIZE MAP PROFILE [--cascades K]  (a JSON line for rows.jsonl;
+                                                                    K: --cascades of the renders, 0 the scene's)
   epipolar-tables ROWS_JSONL
   reference-row TIMINGS SCENE SIZE
   memory-cell TIMINGS                                               ("technique MiB")
@@ -44,10 +45,11 @@ def prefiltered_row(a):
 
 def epipolar_row(a):
     t, e, r = load(a.timings), load(a.error), load(a.reference)
-    print(json.dumps({"scene": a.scene, "size": a.size, "map": int(a.map), "profile": a.profile,
+    print(json.dumps({"scene": a.scene, "size": a.size, "map": int(a.map), "cascades": a.cascades, "profile": a.profile,
                       "device": t["device"], "passes": t["passMilliseconds"], "total": t["totalMilliseconds"],
                       "reference": r["totalMilliseconds"], "rmse": e["relativeRmse"], "nonFinite": e["nonFinite"],
-                      "marched": t.get("marchedSamples", 0), "fixedUp": t.get("fixedUpPixelFraction", 0.0)}))
+                      "marched": t.get("marchedSamples", 0), "fixedUp": t.get("fixedUpPixelFraction", 0.0),
+                      "lights": t.get("lightMilliseconds", []), "referenceLights": r.get("lightMilliseconds", [])}))
 
 
 def epipolar_tables(a):
@@ -63,8 +65,12 @@ def epipolar_tables(a):
     print("| scene | size | shadow map | profile | Reference ms | epipolar ms | speedup | relative RMSE | NaN/Inf | "
           "marched samples | fixed up |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
+    # "4 × 1024²": the renders' --cascades (the scene's own when 0).
+    def maps(r):
+        return f"{r['cascades']} × {r['map']}²" if r.get("cascades", 0) else f"{r['map']}²"
+
     for r in rows:
-        print(f"| {r['scene']} | {r['size']} | {r['map']}² | {r['profile']} | {r['reference']:.2f} | {r['total']:.2f} | "
+        print(f"| {r['scene']} | {r['size']} | {maps(r)} | {r['profile']} | {r['reference']:.2f} | {r['total']:.2f} | "
               f"{r['reference'] / r['total']:.1f}× | {100 * r['rmse']:.2f}% | {r['nonFinite']} | {counts(r)} |")
     names = []
     for r in rows:
@@ -75,8 +81,20 @@ def epipolar_tables(a):
     print("| scene | size | map | profile | " + " | ".join(n.removeprefix("epipolar_") for n in names) + " |")
     print("|---|---|---|---|" + "---|" * len(names))
     for r in rows:
-        print(f"| {r['scene']} | {r['size']} | {r['map']} | {r['profile']} | " +
+        print(f"| {r['scene']} | {r['size']} | {maps(r)} | {r['profile']} | " +
               " | ".join(f"{r['passes'].get(n, 0.0):.3f}" for n in names) + " |")
+    # A frame of several lights: each light's passes (tyndall-render's lightMilliseconds), beside
+    # the Reference's for the same light; the composite and the sums are shared.
+    several = [r for r in rows if len(r.get("lights", [])) > 1]
+    if several:
+        print("\nPer-light GPU milliseconds, the profile's / the Reference's (light 0 is FrameDesc::light):\n")
+        count = max(len(r["lights"]) for r in several)
+        print("| scene | size | map | profile | " + " | ".join(f"light {i}" for i in range(count)) + " |")
+        print("|---|---|---|---|" + "---|" * count)
+        for r in several:
+            cells = [f"{ms:.2f} / {ref:.2f}" for ms, ref in zip(r["lights"], r.get("referenceLights", []))]
+            cells += [""] * (count - len(cells))
+            print(f"| {r['scene']} | {r['size']} | {maps(r)} | {r['profile']} | " + " | ".join(cells) + " |")
 
 
 def reference_row(a):
@@ -235,6 +253,7 @@ def main():
     p = sub.add_parser("epipolar-row")
     for name in ("timings", "error", "reference", "scene", "size", "map", "profile"):
         p.add_argument(name)
+    p.add_argument("--cascades", type=int, default=0)
     p.set_defaults(run=epipolar_row)
     p = sub.add_parser("epipolar-tables")
     p.add_argument("rows")

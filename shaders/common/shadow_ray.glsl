@@ -35,4 +35,17 @@ bool tyn_clip_to_shadow_map(TynShadowRay r, inout float t0, inout float t1) {
   return t0 < t1;
 }
 
+// The stretch [a, b] of [0, s] of the view ray that cascade `map` serves (of shadow_map_count;
+// one map serves all of it): view depths [cascade_far[map − 1], cascade_far[map]), the first
+// cascade from the camera, the last to the end. View depth is affine in t: d(t) = d0 + t · d1.
+vec2 tyn_cascade_stretch(uint map, vec3 origin, vec3 dir, float s) {
+  if (frame.shadow_map_count <= 1u) return vec2(0.0, s);
+  float d0 = dot(frame.view_depth_axis.xyz, origin) + frame.view_depth_axis.w;
+  float d1 = dot(frame.view_depth_axis.xyz, dir);
+  if (d1 <= 0.0) return map == 0u ? vec2(0.0, s) : vec2(s);  // a ray that does not recede: the first cascade's
+  float a = map == 0u ? 0.0 : clamp((frame.cascade_far[map - 1u] - d0) / d1, 0.0, s);
+  float b = map + 1u >= frame.shadow_map_count ? s : clamp((frame.cascade_far[map] - d0) / d1, a, s);
+  return vec2(a, b);
+}
+
 #endif

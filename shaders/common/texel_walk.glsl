@@ -226,17 +226,37 @@ float tyn_part_end(float t0, float t1, uint part, uint parts) {
   return part + 1u == parts ? t1 : t0 + (t1 - t0) * (float(part + 1u) / float(parts));
 }
 
-// The stretch [a, b] of [0, s] of the view ray that cascade `map` serves (of shadow_map_count;
-// one map serves all of it): view depths [cascade_far[map − 1], cascade_far[map]), the first
-// cascade from the camera, the last to the end. View depth is affine in t: d(t) = d0 + t · d1.
-vec2 tyn_cascade_stretch(uint map, vec3 origin, vec3 dir, float s) {
-  if (frame.shadow_map_count <= 1u) return vec2(0.0, s);
-  float d0 = dot(frame.view_depth_axis.xyz, origin) + frame.view_depth_axis.w;
-  float d1 = dot(frame.view_depth_axis.xyz, dir);
-  if (d1 <= 0.0) return map == 0u ? vec2(0.0, s) : vec2(s);  // a ray that does not recede: the first cascade's
-  float a = map == 0u ? 0.0 : clamp((frame.cascade_far[map - 1u] - d0) / d1, 0.0, s);
-  float b = map + 1u >= frame.shadow_map_count ? s : clamp((frame.cascade_far[map] - d0) / d1, a, s);
-  return vec2(a, b);
+// Part `part` of `parts` of a directional light's transmittance integral (L_in before the light's
+// radiance and the phase) along the stretch [stretch.x, stretch.y] of the view ray that map `map`
+// serves (tyn_cascade_stretch): walked inside the map's square, lit outside it, where there is no
+// occluder information. The epipolar march walks so the stretches it cannot march along a line.
+vec3 tyn_walk_directional_stretch(uint map, vec3 origin, vec3 dir, vec2 stretch, uint part, uint parts) {
+  vec3 lit = vec3(0.0);
+  float t_in = stretch.x;
+  float t_out = stretch.y;
+  TynShadowRay r = tyn_shadow_ray(map, origin, dir);
+  if (tyn_clip_to_shadow_map(r, t_in, t_out)) {
+    if (part == 0u) lit += tyn_transmittance_integral(stretch.x, t_in, frame.extinction);
+    float begin = tyn_part_begin(t_in, t_out, part, parts);
+    float end = tyn_part_end(t_in, t_out, part, parts);
+#ifdef TYN_WALK_IN_STEPS
+    if (tyn_walk_steps() != 0u) {
+      lit += tyn_step_shadow_map(map, origin, dir, t_in, t_out, part, parts, true);
+    } else
+#endif
+#ifdef TYN_WALK_SHADOW_BLOCKS
+    if (tyn_shadow_blocks_built()) {
+      lit += tyn_walk_shadow_blocks(map, origin, dir, begin, end, true);
+    } else
+#endif
+    {
+      lit += tyn_walk_shadow_map(map, origin, dir, begin, end, true);
+    }
+    if (part == 0u) lit += tyn_transmittance_integral(t_out, stretch.y, frame.extinction);
+  } else if (part == 0u) {
+    lit += tyn_transmittance_integral(stretch.x, stretch.y, frame.extinction);
+  }
+  return lit;
 }
 
 // Part `part` of `parts` of L_in along [0, s] of the view ray (DESIGN.md "Radiometry"): the
@@ -250,31 +270,7 @@ vec3 tyn_reference_in_scattering_part(vec3 origin, vec3 dir, float s, uint part,
     vec3 lit = vec3(0.0);
     for (uint map = 0u; map < frame.shadow_map_count; ++map) {
       vec2 stretch = tyn_cascade_stretch(map, origin, dir, s);
-      if (!(stretch.y > stretch.x)) continue;
-      float t_in = stretch.x;
-      float t_out = stretch.y;
-      TynShadowRay r = tyn_shadow_ray(map, origin, dir);
-      if (tyn_clip_to_shadow_map(r, t_in, t_out)) {
-        if (part == 0u) lit += tyn_transmittance_integral(stretch.x, t_in, frame.extinction);
-        float begin = tyn_part_begin(t_in, t_out, part, parts);
-        float end = tyn_part_end(t_in, t_out, part, parts);
-#ifdef TYN_WALK_IN_STEPS
-        if (tyn_walk_steps() != 0u) {
-          lit += tyn_step_shadow_map(map, origin, dir, t_in, t_out, part, parts, true);
-        } else
-#endif
-#ifdef TYN_WALK_SHADOW_BLOCKS
-        if (tyn_shadow_blocks_built()) {
-          lit += tyn_walk_shadow_blocks(map, origin, dir, begin, end, true);
-        } else
-#endif
-        {
-          lit += tyn_walk_shadow_map(map, origin, dir, begin, end, true);
-        }
-        if (part == 0u) lit += tyn_transmittance_integral(t_out, stretch.y, frame.extinction);
-      } else if (part == 0u) {
-        lit += tyn_transmittance_integral(stretch.x, stretch.y, frame.extinction);
-      }
+      if (stretch.y > stretch.x) lit += tyn_walk_directional_stretch(map, origin, dir, stretch, part, parts);
     }
     float cos_theta = dot(dir, -frame.light_direction);
     return frame.light_radiance * tyn_phase_weighted_scattering(cos_theta) * lit;

@@ -25,10 +25,14 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_OUT_SCATTERING, rgba32f) uniform 
 // and the march and fix-up of a light whose maps are walked (block_walk.glsl); 1 × 1 otherwise.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SHADOW_BLOCKS, rg32f) uniform image2D shadow_blocks;
 
-// A light whose view rays have no single slice line, so that every sample walks its maps with the
-// Reference's texel walk: a point light (six maps) and a directional light with cascades (a ray
-// crosses several maps, each with its own projection of the slice).
-bool tyn_epipolar_walks_maps() { return frame.light_type == TYN_LIGHT_POINT || frame.shadow_map_count > 1u; }
+// A light whose view rays have no slice line, so that every sample walks its maps with the
+// Reference's texel walk: a point light (six maps, whose frusta cut a slice's plane into pieces of
+// six different lines). A directional light's cascades each have their own line per slice.
+bool tyn_epipolar_walks_maps() { return frame.light_type == TYN_LIGHT_POINT; }
+
+// The maps a slice has a line and tree in: a directional light's cascades, else map 0 (a spot
+// light; a point light has none).
+uint tyn_epipolar_line_maps() { return frame.light_type == TYN_LIGHT_DIRECTIONAL ? frame.shadow_map_count : 1u; }
 
 // Texels along a block's side: a walked light's or a directional light's fix-up's.
 int tyn_shadow_block_size() {
@@ -48,10 +52,12 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_ARGS, std430) buffer FixupA
 // Per (sample, slice): the ray-marched samples it is interpolated from, left | right << 16
 // (both equal to the sample itself when it is ray-marched; TYN_EPIPOLAR_NO_SOURCE if invalid).
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_INTERPOLATION_SOURCE, r32ui) uniform uimage2D interpolation_source;
-// Per slice: where its line starts in shadow-map UV and its unit direction (yusov2013 "Slice UV
-// origin & direction"), TYN_EPIPOLAR_INVALID_COORD when tyn_slice_shadow_uv found none.
+// Per (slice, map): where the slice's line starts in that shadow map's UV and its unit direction
+// (yusov2013 "Slice UV origin & direction"), TYN_EPIPOLAR_INVALID_COORD when tyn_slice_shadow_uv
+// found none; row m for map m (a cascade, yusov2013's cascaded version; one row otherwise).
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SLICE_UV, rgba32f) uniform image2D slice_uv;
-// One row per slice: its 1D min/max binary tree, level after level (min_max_tree.h's layout).
+// One row per (slice, map): its 1D min/max binary tree, level after level (min_max_tree.h's
+// layout), at tyn_epipolar_tree_row.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_MIN_MAX_TREE, rg32f) uniform image2D min_max_tree;
 // The ray-marching samples the refinement chose, sample | slice << 16, with their count (read back
 // for the stats) and the VkDispatchIndirectCommands that run the passes over them: marching a
@@ -91,12 +97,21 @@ layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar
 
 vec2 tyn_output_extent() { return vec2(frame.output_extent); }
 
-// Depth of a texel of shadow map 0 (the one a slice's tree is built on), 1 (no occluder) outside
-// the map: min_max_tree.h's TYN_MIN_MAX_SHADOW_TEXEL.
-float tyn_epipolar_shadow_texel(ivec2 texel) {
+// The tree image's row of a slice's tree in map `map`: the slices' rows of map 0, then of map 1, ….
+int tyn_epipolar_tree_row(int slice, uint map) { return int(map * epipolar.slice_count) + slice; }
+
+// Depth of a texel of a map a slice's line runs in (the spot light's map, a cascade), 1 (no
+// occluder) outside the map: min_max_tree.h's TYN_MIN_MAX_SHADOW_TEXEL. Constant indices only,
+// as common/texel_walk.glsl's tyn_shadow_texel.
+float tyn_epipolar_shadow_texel(uint map, ivec2 texel) {
   int size = int(frame.shadow_map_size);
   if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) return 1.0;
-  return texelFetch(shadow_maps[0], texel, 0).r;
+  switch (map) {
+    case 0u: return texelFetch(shadow_maps[0], texel, 0).r;
+    case 1u: return texelFetch(shadow_maps[1], texel, 0).r;
+    case 2u: return texelFetch(shadow_maps[2], texel, 0).r;
+    default: return texelFetch(shadow_maps[3], texel, 0).r;
+  }
 }
 
 // The plane of the surface at a pixel of the depth buffer (epipolar_geometry.h, "The surface around

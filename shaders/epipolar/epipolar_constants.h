@@ -48,7 +48,7 @@ TYN_CONST uint TYN_EPIPOLAR_TREE_MAX_SAMPLES = 4096u;
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK = 4u;
 TYN_CONST uint TYN_EPIPOLAR_SHADOW_BLOCK_GROUP = 8u;
 // The same for the lights whose march walks its maps for every sample (a point light's six
-// maps, a directional light's cascades; tyn_epipolar_walks_maps): their rays cross wide open
+// maps; tyn_epipolar_walks_maps): their rays cross wide open
 // space, where large blocks decide (beyond 32 a point light's march gains little).
 TYN_CONST uint TYN_EPIPOLAR_WALKED_SHADOW_BLOCK = 32u;
 // The blocks are built when at least one pixel per this many texels of the map's side is fixed up.

@@ -14,8 +14,8 @@
 // The texel walk's hooks (common/texel_walk.glsl). A point light's lit sections from the
 // semi-analytic table.
 #define TYN_WALK_LIT_SECTIONS
-// A directional light's map and a point light's six crossed block by block where a block decides
-// all its texels.
+// A directional light's maps (its cascades) and a point light's six crossed block by block where a
+// block decides all its texels.
 #define TYN_WALK_SHADOW_BLOCKS
 // EpipolarSettings::fixupSteps > 0: N steps per map instead of the texel walk.
 #define TYN_WALK_IN_STEPS
@@ -23,7 +23,7 @@
 #include "epipolar/block_walk.glsl"
 #include "epipolar/fixup_steps.glsl"
 
-// Whether this frame built the blocks: a walked light's (point, cascades) before the march,
+// Whether this frame built the blocks: a walked light's (point) before the march,
 // whenever the frame has a block image; a directional light's where the unwarp found them worth
 // building.
 bool tyn_shadow_blocks_built() {

@@ -8,18 +8,19 @@
 // light-colour texture lit sections are cut into chunks of EpipolarSettings::coloredStep cells
 // (min_max_tree.h, tyn_min_max_add_colored), each integrated uncoloured times the light's mean
 // colour over it from the slice's prefix sums (light_color_sums.h; yusov2013 "Colored Light
-// Shafts" walks them at the fine step instead). Point lights
-// (six maps, no single line), a directional light's cascades (one line per map) and slices
-// without a line in the map use the Reference's texel walk,
-// with its lit sections integrated from the same table (TYN_WALK_LIT_SECTIONS); a point light's
-// walk crosses its maps block by block where a block decides all its texels (block_walk.glsl).
+// Shafts" walks them at the fine step instead). A directional light's cascades cut the view ray
+// into stretches by view depth (tyn_cascade_stretch), and each stretch is marched along its
+// cascade's line and tree (yusov2013's cascaded version). Point lights (six maps, no single line)
+// and slices without a line in a map use the Reference's texel walk, with its lit sections
+// integrated from the same table (TYN_WALK_LIT_SECTIONS); a point light's walk crosses its maps
+// block by block where a block decides all its texels (block_walk.glsl).
 #extension GL_GOOGLE_include_directive : require
 #include "epipolar/epipolar_common.glsl"
 #define TYN_WALK_LIT_SECTIONS
 #define TYN_WALK_SHADOW_BLOCKS
 #include "epipolar/block_walk.glsl"
 
-// A walked light's frame (point, cascades) builds its maps' blocks before the march
+// A walked light's frame (point) builds its maps' blocks before the march
 // (EpipolarTechnique::record); a directional light's are built after it, for the fix-up, if at all.
 bool tyn_shadow_blocks_built() { return tyn_epipolar_walks_maps() && epipolar.shadow_block_side != 0u; }
 
@@ -31,8 +32,10 @@ layout(constant_id = 1) const bool TYN_MARCH_LIGHT_COLOR = false;
 // marches); a CPU driver runs best with one (ContextDesc::marchThreadsPerSample).
 layout(constant_id = 2) const uint TYN_MARCH_PARTS = 1u;
 
-// The slice and the view ray being marched, for the accessors of min_max_tree.h below.
+// The slice, the map and the view ray being marched, for the accessors of min_max_tree.h below.
 int g_slice;
+uint g_map;
+int g_tree_row;  // tyn_epipolar_tree_row(g_slice, g_map)
 vec2 g_origin_texels;
 vec2 g_step_texels;
 // u = (a0 + a1 t) / (p + q t) (slice_ray.glsl); its inverse gives a spot light's lit section
@@ -72,11 +75,11 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
 #define TYN_COLOR_SUM(k) imageLoad(light_color_sums, tyn_color_sums_texel(int(epipolar.tree_samples), g_slice, k)).rgb
 #include "epipolar/light_color_sums.h"
 
-#define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(texel)
+#define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(g_map, texel)
 #define TYN_MIN_MAX_COLOR_MEAN(a, b) tyn_color_sums_mean(int(epipolar.tree_samples), a, b)
 #define TYN_MIN_MAX_SAMPLE(k) tyn_min_max_cell_sample(g_origin_texels, g_step_texels, k)
 #define TYN_MIN_MAX_FETCH(level, index) \
-  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree_samples), level) + (index), g_slice)).xy
+  imageLoad(min_max_tree, ivec2(tyn_min_max_level_offset(int(epipolar.tree_samples), level) + (index), g_tree_row)).xy
 // The pipeline is specialised per light type (TYN_LIGHT_TYPE, common/medium.glsl), so that the
 // compiler drops the other integral: a run-time choice here costs the directional march several
 // times its time on a CPU driver, whose vectorised code evaluates both sides of the branch.
@@ -88,11 +91,14 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
 
 layout(local_size_x = TYN_EPIPOLAR_MARCH_GROUP) in;
 
-// Part `part` of TYN_MARCH_PARTS of L_in along [0, s] of the view ray sr (slice_ray.glsl), marched
-// along the slice's line: the march's u range is cut into equal parts; part 0 adds a directional
-// light's unshadowed stretches outside the map.
-vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, float s, uint part) {
+// Part `part` of TYN_MARCH_PARTS of the lit part along the stretch [t0, t1] of the view ray that sr
+// describes (slice_ray.glsl) in map `map`, marched along the slice's line there: the march's u
+// range is cut into equal parts. A directional light's: its transmittance integral, part 0 adding
+// the stretch's unshadowed ends outside the map; a spot light's: its L_in.
+vec3 tyn_march_along_slice(int slice, uint map, TynSliceRay sr, vec3 origin, vec3 dir, float t0, float t1, uint part) {
   g_slice = slice;
+  g_map = map;
+  g_tree_row = tyn_epipolar_tree_row(slice, map);
   g_origin_texels = sr.origin_texels;
   g_step_texels = sr.step_texels;
   g_u_of_t = sr.u_of_t;
@@ -109,9 +115,9 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
   bool directional = TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL;
   vec3 unshadowed = vec3(0.0);
   if (directional && part == 0u) {
-    unshadowed = sr.inside ? tyn_transmittance_integral(0.0, sr.t_in, frame.extinction) +
-                                 tyn_transmittance_integral(sr.t_out, s, frame.extinction)
-                           : tyn_transmittance_integral(0.0, s, frame.extinction);
+    unshadowed = sr.inside ? tyn_transmittance_integral(t0, sr.t_in, frame.extinction) +
+                                 tyn_transmittance_integral(sr.t_out, t1, frame.extinction)
+                           : tyn_transmittance_integral(t0, t1, frame.extinction);
   }
   vec3 lit = vec3(0.0);
   if (sr.inside) {
@@ -128,9 +134,19 @@ vec3 tyn_march_along_slice(int slice, TynSliceRay sr, vec3 origin, vec3 dir, flo
             : tyn_min_max_march_plain_range(sample_count, sr.ray, colored_chunk, part_a, part_b);
     lit = march.lit_integral;
   }
-  if (!directional) return lit;
-  float cos_theta = dot(dir, -frame.light_direction);
-  return frame.light_radiance * tyn_phase_weighted_scattering(cos_theta) * (unshadowed + lit);
+  return directional ? unshadowed + lit : lit;
+}
+
+// A stretch's lit part (as tyn_march_along_slice) along the slice's line in map `map` where the
+// slice has one and the ray is not (nearly) along the light; the Reference's walk of the stretch
+// otherwise (slice_ray.glsl, tyn_slice_ray_degenerate).
+vec3 tyn_march_directional_stretch(int slice, uint map, vec3 origin, vec3 dir, vec2 stretch, uint part) {
+  vec4 origin_direction = imageLoad(slice_uv, ivec2(slice, map));
+  if (tyn_slice_valid(origin_direction)) {
+    TynSliceRay sr = tyn_slice_ray(map, origin_direction, origin, dir, stretch.x, stretch.y);
+    if (!tyn_slice_ray_degenerate(sr)) return tyn_march_along_slice(slice, map, sr, origin, dir, stretch.x, stretch.y, part);
+  }
+  return tyn_walk_directional_stretch(map, origin, dir, stretch, part, TYN_MARCH_PARTS);
 }
 
 // This thread's part of the entry's L_in.
@@ -139,18 +155,28 @@ vec3 tyn_march_entry(uvec2 id, uint part) {
   if (coordinates.w <= 0.5) return vec3(0.0);
   vec3 origin = frame.view_to_world[3].xyz;
   vec3 dir = tyn_view_direction(vec2(coordinates.x, coordinates.y));
-  // A light whose maps are walked (no slice line), slices without a line in the map and rays along
-  // the light: the Reference's texel walk.
-  vec4 origin_direction = !tyn_epipolar_walks_maps() ? imageLoad(slice_uv, ivec2(id.y, 0))
-                                                     : vec4(TYN_EPIPOLAR_INVALID_COORD);
-  bool along_slice = tyn_slice_valid(origin_direction);
-  TynSliceRay sr;
-  if (along_slice) {
-    sr = tyn_slice_ray(origin_direction, origin, dir, coordinates.z);
-    along_slice = !tyn_slice_ray_degenerate(sr);
+  float s = coordinates.z;
+  // A light whose maps are walked (no slice line): the Reference's texel walk.
+  if (tyn_epipolar_walks_maps()) return tyn_reference_in_scattering_part(origin, dir, s, part, TYN_MARCH_PARTS);
+  int slice = int(id.y);
+  if (TYN_LIGHT_TYPE == TYN_LIGHT_DIRECTIONAL) {
+    // Each cascade's stretch of the ray along that cascade's line (one map: the whole ray).
+    vec3 lit = vec3(0.0);
+    for (uint map = 0u; map < frame.shadow_map_count; ++map) {
+      vec2 stretch = tyn_cascade_stretch(map, origin, dir, s);
+      if (stretch.y > stretch.x) lit += tyn_march_directional_stretch(slice, map, origin, dir, stretch, part);
+    }
+    float cos_theta = dot(dir, -frame.light_direction);
+    return frame.light_radiance * tyn_phase_weighted_scattering(cos_theta) * lit;
   }
-  return along_slice ? tyn_march_along_slice(int(id.y), sr, origin, dir, coordinates.z, part)
-                     : tyn_reference_in_scattering_part(origin, dir, coordinates.z, part, TYN_MARCH_PARTS);
+  // A spot light: one map. Slices without a line in it and rays along the light take the
+  // Reference's texel walk.
+  vec4 origin_direction = imageLoad(slice_uv, ivec2(slice, 0));
+  if (tyn_slice_valid(origin_direction)) {
+    TynSliceRay sr = tyn_slice_ray(0u, origin_direction, origin, dir, 0.0, s);
+    if (!tyn_slice_ray_degenerate(sr)) return tyn_march_along_slice(slice, 0u, sr, origin, dir, 0.0, s, part);
+  }
+  return tyn_reference_in_scattering_part(origin, dir, s, part, TYN_MARCH_PARTS);
 }
 
 shared vec3 g_parts[TYN_EPIPOLAR_MARCH_GROUP];

@@ -1,5 +1,6 @@
-// An epipolar sample's view ray along its slice's line in shadow map 0 (yusov2013 "1D min/max
-// binary trees"): every view ray of a slice projects onto that line, so the ray is described by
+// An epipolar sample's view ray along its slice's line in one shadow map (yusov2013 "1D min/max
+// binary trees"; a cascade's stretch of the ray along that cascade's line in its cascaded
+// version): every view ray of a slice projects onto that line, so the ray is described by
 // the line's 1D parameter u (texel units, min_max_tree.h) and its shadow depth and view distance
 // at both ends of its part inside the map. Shared by the march (march.comp) and the refinement's
 // whole-ray shadow test (shadow_test.comp), so that a sample the test finds in shadow is one the march
@@ -23,16 +24,16 @@ struct TynSliceRay {
   vec2 depths;         // its shadow depths at t_in and t_out (`ray` keeps only one when u does not move)
 };
 
-// The view ray from `origin` along unit `dir` up to distance s, on the slice whose line in
-// shadow-map UV is origin_direction (slice_setup.comp).
-TynSliceRay tyn_slice_ray(vec4 origin_direction, vec3 origin, vec3 dir, float s) {
+// The stretch [t0, t1] of the view ray from `origin` along unit `dir`, in shadow map `map`, on the
+// slice whose line in that map's UV is origin_direction (slice_setup.comp).
+TynSliceRay tyn_slice_ray(uint map, vec4 origin_direction, vec3 origin, vec3 dir, float t0, float t1) {
   float size = float(frame.shadow_map_size);
   TynSliceRay sr;
   sr.origin_texels = vec2(origin_direction.x, origin_direction.y) * size;
   sr.step_texels = tyn_min_max_step_texels(vec2(origin_direction.z, origin_direction.w));
-  TynShadowRay r = tyn_shadow_ray(0u, origin, dir);
-  sr.t_in = 0.0;
-  sr.t_out = s;
+  TynShadowRay r = tyn_shadow_ray(map, origin, dir);
+  sr.t_in = t0;
+  sr.t_out = t1;
   sr.inside = tyn_clip_to_shadow_map(r, sr.t_in, sr.t_out);
   sr.u_of_t = vec4(0.0);
   sr.ray = tyn_min_max_ray(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, frame.extinction);

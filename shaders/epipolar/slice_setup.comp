@@ -4,9 +4,10 @@
 // their work):
 //   1. its entry and exit points (engelhardt2010 §4.1, yusov2013 "Sample generation"), spread
 //      over the frame's border arc (epipolar_geometry.h "Slice arc"), or the culled sentinel;
-//   2. for the lights that march along one line (directional, spot), its origin and direction in
-//      shadow-map UV (yusov2013 "Slice Origin and Direction"), its 1D min/max tree when the march
-//      uses one, and with a light-colour texture the colour's prefix sums along the line;
+//   2. for the lights that march along one line per map (directional, each of its cascades; spot),
+//      its origin and direction in shadow-map UV (yusov2013 "Slice Origin and Direction"), its 1D
+//      min/max tree when the march uses one (one per cascade, as yusov2013's cascaded version), and
+//      with a light-colour texture the colour's prefix sums along the line;
 //   3. the coordinates of its samples: screen position and view-ray length;
 //   4. the refinement: which samples are ray-marched, the others' interpolation sources, and the
 //      march list.
@@ -15,7 +16,8 @@
 #extension GL_GOOGLE_include_directive : require
 #define TYN_COORDINATES_COHERENT
 #include "epipolar/epipolar_common.glsl"
-#define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(texel)
+uint g_tree_map;  // the map whose tree is being built
+#define TYN_MIN_MAX_SHADOW_TEXEL(texel) tyn_epipolar_shadow_texel(g_tree_map, texel)
 #include "epipolar/min_max_tree.h"
 #include "epipolar/light_color_sums.h"
 #include "common/light_color.glsl"
@@ -26,22 +28,23 @@ layout(local_size_x = TYN_EPIPOLAR_TREE_GROUP) in;
 const uint TYN_SETUP_GROUP = TYN_EPIPOLAR_TREE_GROUP;
 
 shared vec4 tyn_end_points;
-shared vec4 tyn_origin_direction;
+shared vec4 tyn_lines[TYN_MAX_CASCADES];  // the slice's line in each map (tyn_epipolar_line_maps)
 
 // ---- 2. The slice's line in the shadow map ---------------------------------------------------
 
-// Every view ray of a slice lies in one epipolar plane, whose image in the shadow map is one line;
+// Every view ray of a slice lies in one epipolar plane, whose image in a shadow map is one line
+// (a directional light's orthographic cascades share the light's direction: one line in each);
 // the slice's tree is built along it and its samples are marched along it.
-vec4 tyn_slice_line(vec4 end_points) {
+vec4 tyn_slice_line(vec4 end_points, uint map) {
   vec4 origin_direction = vec4(TYN_EPIPOLAR_INVALID_COORD);
   if (tyn_slice_valid(end_points)) {
     // A spot light's rays are bounded by its cone; a directional map is bounded by its square.
     vec3 cone = frame.light_type == TYN_LIGHT_SPOT
-                    ? tyn_spot_cone_uv(frame.world_to_shadow[0], frame.light_position, frame.light_direction,
+                    ? tyn_spot_cone_uv(frame.world_to_shadow[map], frame.light_position, frame.light_direction,
                                        frame.cos_outer_cone)
                     : vec3(0.0);
     float uv_length;
-    tyn_slice_shadow_uv(frame.world_to_shadow[0], frame.view_to_world[3].xyz,
+    tyn_slice_shadow_uv(frame.world_to_shadow[map], frame.view_to_world[3].xyz,
                         tyn_view_direction(vec2(end_points.z, end_points.w)), cone, origin_direction, uv_length);
   }
   return origin_direction;
@@ -51,11 +54,13 @@ vec4 tyn_slice_line(vec4 end_points) {
 // shadow map along the line (each cell's conservative 2×2 footprint, so that the accelerated march
 // equals the plain one), then each coarser level from the one below, up to the highest level the
 // march may use. Levels ping-pong between two halves of shared memory; every level is also written
-// to the slice's row of the tree texture.
+// to the tree's row of the tree texture (tyn_epipolar_tree_row).
 // Level l (l even) at [0, L/2), level l + 1 at [L/2, 3L/4): 24 KiB for L = 4096.
 shared vec2 tyn_nodes[TYN_EPIPOLAR_TREE_MAX_SAMPLES / 2 + TYN_EPIPOLAR_TREE_MAX_SAMPLES / 4];
 
-void tyn_build_tree(int slice, vec4 origin_direction) {
+void tyn_build_tree(int slice, uint map, vec4 origin_direction) {
+  g_tree_map = map;
+  int row = tyn_epipolar_tree_row(slice, map);
   int sample_count = int(epipolar.tree_samples);
   int top_level = int(epipolar.tree_top_level);
   int thread = int(gl_LocalInvocationIndex);
@@ -67,7 +72,7 @@ void tyn_build_tree(int slice, vec4 origin_direction) {
   for (int i = thread; i < nodes; i += group) {
     vec2 node = tyn_min_max_level0_node(origin, step, i);
     tyn_nodes[i] = node;
-    imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, 0) + i, slice), vec4(node, 0.0, 0.0));
+    imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, 0) + i, row), vec4(node, 0.0, 0.0));
   }
   int from = 0;
   int to = sample_count / 2;
@@ -77,7 +82,7 @@ void tyn_build_tree(int slice, vec4 origin_direction) {
     for (int i = thread; i < nodes; i += group) {
       vec2 node = tyn_min_max_merge(tyn_nodes[from + 2 * i], tyn_nodes[from + 2 * i + 1]);
       tyn_nodes[to + i] = node;
-      imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, level) + i, slice), vec4(node, 0.0, 0.0));
+      imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, level) + i, row), vec4(node, 0.0, 0.0));
     }
     int swap = from;
     from = to;
@@ -244,16 +249,17 @@ void tyn_refine(uint slice, uint count) {
 
 // ---- The next pass -----------------------------------------------------------------------------
 
-// The camera in shadow on the 2×2 texel block around it (the footprint of a 1D cell there); a
-// camera outside the map counts as lit.
+// The camera in shadow on the 2×2 texel block around it (the footprint of a 1D cell there) in map 0
+// (the first cascade serves the rays' first stretch, from the camera); a camera outside the map
+// counts as lit.
 bool tyn_camera_in_shadow_map() {
   vec4 h0 = frame.world_to_shadow[0] * vec4(frame.view_to_world[3].xyz, 1.0);
   if (h0.w <= 0.0 || abs(h0.x) > h0.w || abs(h0.y) > h0.w) return false;
   vec2 camera_texels = (vec2(h0.x, h0.y) / h0.w * 0.5 + 0.5) * float(frame.shadow_map_size);
   ivec2 t = tyn_min_max_footprint_origin(camera_texels);
-  vec2 bounds = tyn_min_max_footprint_bounds(vec4(tyn_epipolar_shadow_texel(t), tyn_epipolar_shadow_texel(t + ivec2(1, 0)),
-                                                  tyn_epipolar_shadow_texel(t + ivec2(0, 1)),
-                                                  tyn_epipolar_shadow_texel(t + ivec2(1, 1))));
+  vec2 bounds = tyn_min_max_footprint_bounds(
+      vec4(tyn_epipolar_shadow_texel(0u, t), tyn_epipolar_shadow_texel(0u, t + ivec2(1, 0)),
+           tyn_epipolar_shadow_texel(0u, t + ivec2(0, 1)), tyn_epipolar_shadow_texel(0u, t + ivec2(1, 1))));
   return bounds.y < 1.0 && h0.z / h0.w > bounds.y;
 }
 
@@ -284,18 +290,24 @@ void main() {
     imageStore(slice_end_points, ivec2(slice, 0), end_points);
     tyn_end_points = end_points;
     // A light whose maps are walked marches no slice line (tyn_epipolar_walks_maps).
-    vec4 line = !tyn_epipolar_walks_maps() ? tyn_slice_line(end_points) : vec4(TYN_EPIPOLAR_INVALID_COORD);
-    if (!tyn_epipolar_walks_maps()) imageStore(slice_uv, ivec2(slice, 0), line);
-    tyn_origin_direction = line;
+    for (uint map = 0u; map < tyn_epipolar_line_maps(); ++map) {
+      vec4 line = !tyn_epipolar_walks_maps() ? tyn_slice_line(end_points, map) : vec4(TYN_EPIPOLAR_INVALID_COORD);
+      if (!tyn_epipolar_walks_maps()) imageStore(slice_uv, ivec2(slice, map), line);
+      tyn_lines[map] = line;
+    }
   }
   barrier();
   vec4 end_points = tyn_end_points;
-  vec4 origin_direction = tyn_origin_direction;
   // Uniform across the workgroup: the march reads no tree or sums of a slice without a line.
   bool tree = !tyn_epipolar_walks_maps() && epipolar.tree_enabled != 0u;
-  if (tree && tyn_slice_valid(origin_direction)) tyn_build_tree(int(slice), origin_direction);
-  if (!tyn_epipolar_walks_maps() && epipolar.colored_chunk != 0u && tyn_slice_valid(origin_direction)) {
-    tyn_build_color_sums(int(slice), origin_direction);
+  for (uint map = 0u; map < tyn_epipolar_line_maps(); ++map) {
+    // The previous tree's last level is read from the shared nodes this one overwrites.
+    if (map > 0u) barrier();
+    if (tree && tyn_slice_valid(tyn_lines[map])) tyn_build_tree(int(slice), map, tyn_lines[map]);
+  }
+  // A light-colour texture comes with one map (cascades cannot take one).
+  if (!tyn_epipolar_walks_maps() && epipolar.colored_chunk != 0u && tyn_slice_valid(tyn_lines[0])) {
+    tyn_build_color_sums(int(slice), tyn_lines[0]);
   }
 
   uint count = tyn_slice_sample_count(end_points, extent, epipolar.samples_per_slice, epipolar.epipole_density,

@@ -204,11 +204,11 @@ void tyn_unwarp(uvec2 target_pixel) {
 // (fixup.comp), up to the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and
 // its debug view loop over the rest): zero groups, and so no work, when none was flagged.
 // Where a directional light's frame has a block image (EpipolarConstants::shadow_block_side) it also
-// sizes the shadow-map blocks pass (shadow_blocks.comp): the blocks read the whole map, a cost the
-// fix-up's block steps repay only when it walks enough rays (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS);
-// otherwise zero groups, and the fix-up walks texel by texel or in steps. A walked light's blocks
-// (point, cascades) are built before the march, which walks every sample: the groups written here
-// for one are not read.
+// sizes the shadow-map blocks pass (shadow_blocks.comp, one z slice per cascade): the blocks read
+// the whole maps, a cost the fix-up's block steps repay only when it walks enough rays
+// (TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS per map); otherwise zero groups, and the fix-up walks texel by
+// texel or in steps. A walked light's blocks (point) are built before the march, which walks every
+// sample: the groups written here for one are not read.
 void tyn_size_fixup() {
   uint flagged = atomicAdd(fixup_count, 0u);
   uint groups = TYN_FIXUP_SERIAL ? (flagged + TYN_EPIPOLAR_FIXUP_GROUP - 1u) / TYN_EPIPOLAR_FIXUP_GROUP : flagged;
@@ -216,11 +216,11 @@ void tyn_size_fixup() {
   fixup_groups[1] = 1u;
   fixup_groups[2] = 1u;
   uint side = epipolar.shadow_block_side;
-  bool blocks = side != 0u && flagged * TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS >= frame.shadow_map_size;
+  bool blocks = side != 0u && flagged * TYN_EPIPOLAR_SHADOW_BLOCK_PIXELS >= frame.shadow_map_size * frame.shadow_map_count;
   uint block_groups = (side + TYN_EPIPOLAR_SHADOW_BLOCK_GROUP - 1u) / TYN_EPIPOLAR_SHADOW_BLOCK_GROUP;
   shadow_block_groups[0] = blocks ? block_groups : 0u;
   shadow_block_groups[1] = blocks ? block_groups : 0u;
-  shadow_block_groups[2] = 1u;
+  shadow_block_groups[2] = frame.shadow_map_count;
 }
 
 void main() {

@@ -18,11 +18,10 @@ namespace tyndall {
 
 /// How the epipolar technique marched its samples.
 enum class EpipolarMarch : std::uint32_t {
-  MinMaxTree,          ///< along each slice's 1D min/max tree (yusov2013)
+  MinMaxTree,          ///< along each slice's 1D min/max tree (yusov2013), one per cascade
   CellsTreeOff,        ///< cell by cell: EpipolarSettings::minMaxTree is off
   CellsMapTooLarge,    ///< cell by cell: the shadow map is larger than the tree supports (4096²)
   PointLightBlockWalk, ///< a point light: the texel walk across blocks of its six maps
-  CascadeBlockWalk,    ///< a directional light's cascades: the texel walk across blocks of each cascade
 };
 
 struct EpipolarStats {
@@ -37,6 +36,9 @@ struct EpipolarStats {
   float sliceBorderFraction = 1.0f;
   bool slicesFitSpotCone = false;        ///< the wedge was narrowed to the spot cone
   bool slicesFitOffScreenEpipole = false;///< the wedge was narrowed to what an off-screen epipole sees
+  /// Lines (and trees) per slice: one in each of a directional light's cascades, which march their
+  /// stretches of a view ray along their own; 1 for a spot light, 0 for a point light (walked).
+  std::uint32_t linesPerSlice = 1;
   /// With a light-colour texture, lit parts of a slice's line are integrated in chunks of this many
   /// cells, each times its mean colour from the slice's prefix sums; 0 without (or a point light).
   std::uint32_t coloredChunkCells = 0;

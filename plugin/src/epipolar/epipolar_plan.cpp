@@ -54,10 +54,10 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.bilateral_depth_threshold = settings.bilateralDepthThreshold;
   k.fixup_weight_threshold = settings.fixupWeightThreshold;
   k.epipole_block_radius = epipoleBlockRadius(settings, extent.height);
-  // Directional and spot lights march along each slice's line in shadow map 0; a point light's
-  // rays cross six maps and a directional light's cascades several, so their samples take the
-  // Reference's walk. The tree's level 0 lives in the build pass's shared memory, which bounds L
-  // (maps larger than 4096² march every cell).
+  // Directional and spot lights march along each slice's line in their map (a directional light's
+  // cascades: one line each, all maps the same size); a point light's rays cross six maps, so its
+  // samples take the Reference's walk. The tree's level 0 lives in the build pass's shared memory,
+  // which bounds L (maps larger than 4096² march every cell).
   if (!walked) {
     const int samples = gpu::tyn_min_max_sample_count(static_cast<int>(frame.shadowMaps[0].depth.extent.width));
     const bool tree = settings.minMaxTree && samples <= static_cast<int>(gpu::TYN_EPIPOLAR_TREE_MAX_SAMPLES);
@@ -75,10 +75,8 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
 }
 
 // How the epipolar technique marches this frame, for the stats.
-EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, LightType light,
-                            bool walked) {
-  if (light == LightType::Point) return EpipolarMarch::PointLightBlockWalk;
-  if (walked) return EpipolarMarch::CascadeBlockWalk;
+EpipolarMarch epipolarMarch(const gpu::EpipolarConstants& k, const EpipolarSettings& settings, bool walked) {
+  if (walked) return EpipolarMarch::PointLightBlockWalk;
   if (k.tree_enabled != 0) return EpipolarMarch::MinMaxTree;
   return settings.minMaxTree ? EpipolarMarch::CellsMapTooLarge : EpipolarMarch::CellsTreeOff;
 }
@@ -96,10 +94,9 @@ std::string epipolarNote(const EpipolarStats& s) {
       note = "; point light: samples marched with the texel walk across blocks of " +
              std::to_string(gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK) + "^2 texels (no single slice line)";
       break;
-    case EpipolarMarch::CascadeBlockWalk:
-      note = "; cascades: samples marched with the texel walk across blocks of " +
-             std::to_string(gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK) + "^2 texels of each cascade (no min/max tree)";
-      break;
+  }
+  if (s.linesPerSlice > 1) {
+    note += "; " + std::to_string(s.linesPerSlice) + " cascades: each slice marched along its line in every cascade";
   }
   if (s.sliceBorderFraction >= 1.0f) return note;
   char line[120];
@@ -112,13 +109,14 @@ std::string epipolarNote(const EpipolarStats& s) {
 EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettings& settings, VkExtent2D extent) {
   EpipolarFramePlan plan;
   SliceArc arc;
-  plan.walksMaps = walksMaps(frame.light.type, static_cast<std::uint32_t>(frame.shadowMaps.size()));
+  plan.walksMaps = walksMaps(frame.light.type);
+  plan.lineMaps = plan.walksMaps ? 0u : static_cast<std::uint32_t>(frame.shadowMaps.size());
   plan.constants = epipolarConstants(frame, settings, extent, plan.walksMaps, arc);
   gpu::EpipolarConstants& k = plan.constants;
   plan.stats = EpipolarStats{settings.slices,
                              settings.samplesPerSlice,
                              k.epipole_density,
-                             epipolarMarch(k, settings, frame.light.type, plan.walksMaps),
+                             epipolarMarch(k, settings, plan.walksMaps),
                              arc.fraction,
                              arc.cone,
                              arc.screen};
@@ -126,8 +124,10 @@ EpipolarFramePlan planEpipolarFrame(const FrameDesc& frame, const EpipolarSettin
   // The light-colour texture's sums along the slices' lines, for the march along them.
   plan.colorSamples = k.colored_chunk != 0 ? k.tree_samples : 0;
   plan.stats.coloredChunkCells = !plan.walksMaps ? k.colored_chunk : 0;
+  plan.stats.linesPerSlice = plan.lineMaps;
   // The blocks the walks cross (block_walk.glsl): a walked light's march walks every sample; a
-  // directional light's fix-up only where it walks texel by texel (not in steps).
+  // directional light's fix-up (every cascade's blocks) only where it walks texel by texel (not in
+  // steps).
   const bool blocks = plan.walksMaps || settings.fixupSteps == 0;
   plan.shadowBlocks = !frame.shadowMaps.empty() && blocks
                           ? shadowBlockExtent(frame.light.type, frame.shadowMaps[0].depth.extent.width,

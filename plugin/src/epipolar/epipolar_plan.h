@@ -17,6 +17,9 @@ struct EpipolarFramePlan {
   std::uint32_t colorSamples = 0;  ///< the light-colour sums' samples per slice; 0: none
   VkExtent2D shadowBlocks{};       ///< the shadow-map block image (shadowBlockExtent); 0 × 0: none
   bool walksMaps = false;          ///< walksMaps(): every sample walks the maps, no slice line or tree
+  /// Maps a slice has a line (and a tree) in: a directional light's cascades, a spot light's map;
+  /// 0 when the maps are walked.
+  std::uint32_t lineMaps = 0;
 };
 
 /// The frame's plan for `settings` at an output of `extent` (≥ 2 × 2) with `frame`'s light, maps

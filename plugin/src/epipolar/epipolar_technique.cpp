@@ -69,15 +69,13 @@ std::uint32_t groups(std::uint32_t count, std::uint32_t size) { return (count + 
 
 }  // namespace
 
-bool walksMaps(LightType light, std::uint32_t mapCount) {
-  return light == LightType::Point || hasCascades(light, mapCount);
-}
+bool walksMaps(LightType light) { return light == LightType::Point; }
 
 VkExtent2D shadowBlockExtent(LightType light, std::uint32_t mapSize, std::uint32_t mapCount) {
   if (light == LightType::Spot || mapSize == 0 || mapCount == 0) return {0, 0};
   // shaders/epipolar/epipolar_common.glsl, tyn_shadow_block_size.
   const std::uint32_t block =
-      walksMaps(light, mapCount) ? gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK : gpu::TYN_EPIPOLAR_SHADOW_BLOCK;
+      walksMaps(light) ? gpu::TYN_EPIPOLAR_WALKED_SHADOW_BLOCK : gpu::TYN_EPIPOLAR_SHADOW_BLOCK;
   const std::uint32_t side = groups(mapSize, block);
   return {side, side * mapCount};
 }
@@ -313,7 +311,7 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) {
   const EpipolarSettings& settings = in.frame.epipolar != nullptr ? *in.frame.epipolar : in.choice.epipolar;
   const EpipolarFramePlan plan = planEpipolarFrame(in.frame, settings, in.extent);
-  if (Outcome o = prepareTextures(gpu, settings, plan.treeSamples, plan.colorSamples, plan.shadowBlocks, in.targetExtent,
+  if (Outcome o = prepareTextures(gpu, settings, plan.lineMaps, plan.treeSamples, plan.colorSamples, plan.shadowBlocks, in.targetExtent,
                                   in.frameIndex);
       !o) {
     return o;
@@ -349,8 +347,8 @@ void EpipolarTechnique::releaseRetired(const Gpu& gpu, std::uint64_t frameIndex,
   retiredShadowBlocks_.release(frameIndex, framesInFlight, [&](OwnedImage& image) { destroyImage(gpu, image); });
 }
 
-Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                                   std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
+Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t lineMaps,
+                                   std::uint32_t treeSamples, std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
                                    std::uint64_t frameIndex) {
   frameIndex_ = frameIndex;
   // The fix-up list, at the first frame that runs the technique (a context that only runs the
@@ -369,13 +367,14 @@ Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSetting
     fixupEntries_ = entries;
   }
   if (Outcome o = prepareShadowBlocks(gpu, shadowBlocks, frameIndex); !o) return o;
-  // A tree of L 1D samples takes L − 1 texels per row; without one a 1 × 1 texture keeps the
-  // descriptor valid.
+  // A tree of L 1D samples takes L − 1 texels per row, one row per slice and line map; without
+  // one a 1 × 1 texture keeps the descriptor valid.
+  lineMaps = std::max(lineMaps, 1u);
   const std::uint32_t treeWidth = treeSamples > 1 ? treeSamples - 1 : 1;
-  const std::uint32_t treeRows = treeSamples > 1 ? settings.slices : 1;
+  const std::uint32_t treeRows = treeSamples > 1 ? settings.slices * lineMaps : 1;
   auto fits = [&](const SampleTextures& t) {
     return t.slices == settings.slices && t.samples == settings.samplesPerSlice && t.treeWidth == treeWidth &&
-           t.colorSamples == colorSamples;
+           t.lineMaps == lineMaps && t.colorSamples == colorSamples;
   };
   if (!fits(textures_)) {
     if (textures_.slices != 0) {
@@ -391,6 +390,7 @@ Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSetting
   fresh.slices = settings.slices;
   fresh.samples = settings.samplesPerSlice;
   fresh.treeWidth = treeWidth;
+  fresh.lineMaps = lineMaps;
   fresh.colorSamples = colorSamples;
   Outcome outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.endPoints);
   if (outcome) {
@@ -405,7 +405,7 @@ Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSetting
     outcome = createImage(gpu, VK_FORMAT_R32_UINT, {settings.samplesPerSlice, settings.slices}, kSampleUsage,
                           fresh.interpolationSource);
   }
-  if (outcome) outcome = createImage(gpu, kSampleFormat, {settings.slices, 1}, kSampleUsage, fresh.sliceUv);
+  if (outcome) outcome = createImage(gpu, kSampleFormat, {settings.slices, lineMaps}, kSampleUsage, fresh.sliceUv);
   if (outcome) outcome = createImage(gpu, VK_FORMAT_R32G32_SFLOAT, {treeWidth, treeRows}, kSampleUsage, fresh.tree);
   if (outcome) {
     const int samples = static_cast<int>(colorSamples);
@@ -612,7 +612,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
       gpu.cmdDispatch(cmd, groups(gpu::TYN_SCATTERING_LUT_HEIGHT, gpu::TYN_EPIPOLAR_SLICE_GROUP), 1, 1);
     });
   }
-  // A walked light's samples (point, cascades: no slice line) are all walked through its maps:
+  // A walked light's samples (point: no slice line) are all walked through its maps:
   // their blocks first, so that the walks cross every block that decides its texels in one step.
   if (shadowBlocksUsed_ && walksMaps_) {
     const std::uint32_t side = shadowBlocks_.extent.width;

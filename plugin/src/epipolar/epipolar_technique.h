@@ -22,14 +22,14 @@ namespace tyndall {
 /// The block image (shaders/epipolar/shadow_blocks.comp) for `mapCount` shadow maps of `mapSize`²
 /// texels: the blocks along each side of a map wide, the maps' blocks stacked one under another.
 /// A directional light's fix-up and the march and fix-up of a light whose maps are walked
-/// (walksMaps: point, cascades) walk the blocks (block_walk.glsl); a spot light's march runs along
+/// (walksMaps: point) walk the blocks (block_walk.glsl); a spot light's march runs along
 /// its slices' min/max trees instead, and its fix-up keeps the Reference's per-part quadrature: 0 × 0.
 VkExtent2D shadowBlockExtent(LightType light, std::uint32_t mapSize, std::uint32_t mapCount);
 
 /// Whether every sample of the light walks its maps with the Reference's texel walk, for want of a
-/// single slice line: a point light's six maps, a directional light's cascades
-/// (shaders/epipolar/epipolar_common.glsl, tyn_epipolar_walks_maps).
-bool walksMaps(LightType light, std::uint32_t mapCount);
+/// slice line: a point light's six maps (shaders/epipolar/epipolar_common.glsl,
+/// tyn_epipolar_walks_maps). A directional light's cascades each have a line per slice.
+bool walksMaps(LightType light);
 
 /// Checks an EpipolarSettings' every field; the message names the field.
 Outcome validateEpipolarSettings(const EpipolarSettings& settings);
@@ -64,14 +64,15 @@ class EpipolarTechnique final : public ScatteringTechnique {
 
  private:
 
-  /// Makes the sample textures match `settings`, the tree texture hold `treeSamples` 1D samples per
-  /// slice (0: no tree is built this frame) and the light-colour sums `colorSamples` (0: no
+  /// Makes the sample textures match `settings`, the slice lines and trees cover `lineMaps` maps
+  /// (EpipolarFramePlan::lineMaps), the tree texture hold `treeSamples` 1D samples per slice and
+  /// map (0: no tree is built this frame) and the light-colour sums `colorSamples` (0: no
   /// light-colour texture, or no slice lines this frame). Textures of other sizes are kept until no
   /// frame in flight can use them (frames in flight need no stall when the parameters change).
   /// `shadowBlocks`: the shadow-map block image's extent (shadowBlockExtent), 0 × 0 when the frame
   /// needs none. `extent`: the L_in target's, for the fix-up list.
-  Outcome prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t treeSamples,
-                  std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
+  Outcome prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t lineMaps,
+                  std::uint32_t treeSamples, std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
                   std::uint64_t frameIndex);
 
 
@@ -96,8 +97,10 @@ class EpipolarTechnique final : public ScatteringTechnique {
     OwnedImage coordinates;  // samples × slices
     OwnedImage scattering;   // samples × slices
     OwnedImage interpolationSource;  // samples × slices, R32_UINT
-    OwnedImage sliceUv;      // slices × 1: line origin and direction in shadow-map UV
-    OwnedImage tree;         // (L − 1) × slices, RG32F: one min/max tree per row; 1 × 1 when unused
+    OwnedImage sliceUv;      // slices × line maps: line origin and direction in each map's UV
+    // (L − 1) × (slices · line maps), RG32F: one min/max tree per row (tyn_epipolar_tree_row);
+    // 1 × 1 when unused.
+    OwnedImage tree;
     // RGBA32F, the light-colour sums (light_color_sums.h's layout: L per slice, in rows of at most
     // 4096); 1 × 1 when unused.
     OwnedImage colorSums;
@@ -105,6 +108,7 @@ class EpipolarTechnique final : public ScatteringTechnique {
     std::uint32_t slices = 0;
     std::uint32_t samples = 0;
     std::uint32_t treeWidth = 0;
+    std::uint32_t lineMaps = 0;
     std::uint32_t colorSamples = 0;
   };
   void destroyTextures(const Gpu& gpu, SampleTextures& textures);

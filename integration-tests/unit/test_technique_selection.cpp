@@ -89,5 +89,20 @@ TEST(TechniqueSelection, EveryChangeHasANoteAndAName) {
   }
 }
 
+// lavapipe's 65,535 loop iterations per invocation (docs/REFERENCE.md "Loop budget on lavapipe"):
+// a point light's walk is measured within it up to 4096² maps; a directional light's takes one
+// iteration per texel edge, up to 2·N per cascade; a spot light's two.
+TEST(TechniqueSelection, WalksThatCanOverrunTheCpuLoopBudget) {
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Point, 6, 4096));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Point, 6, 4104));
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Directional, 1, 16384));
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Directional, 4, 4096));
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Directional, 4, 8191));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Directional, 4, 8192));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Directional, 2, 16384));
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 8192));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 16384));
+}
+
 }  // namespace
 }  // namespace tyndall

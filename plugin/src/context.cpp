@@ -75,9 +75,6 @@ constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE
 // against double-precision references. The same target holds T for the T AOV's copy once L_in
 // has been composited and copied (Context::Impl::recordAovs): T needs no target of its own.
 constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
-// The largest point-light map whose texel walk stays within lavapipe's loop budget (measured,
-// docs/REFERENCE.md "Loop budget on lavapipe"); the frame's note says so above it on a CPU driver.
-constexpr std::uint32_t kCpuDriverPointLightMapLimit = 4096;
 // Frames a retired L_in target is kept as a spare (about two seconds at 60 Hz).
 constexpr std::uint32_t kSpareTargetFrames = 120;
 
@@ -521,20 +518,22 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     note += std::string("; ") + techniqueChangeNote(selection.change);
   }
   // lavapipe ends every loop of a shader invocation once its loops together have run 65,535
-  // iterations (docs/REFERENCE.md "Loop budget on lavapipe"). A point light's texel walk takes about
-  // two per texel step and a ray passing the light crosses up to six times the map's side: within
-  // the budget up to 4096², not beyond. Said, not hidden: the result is wrong there.
+  // iterations (docs/REFERENCE.md "Loop budget on lavapipe"): a point light's walk above 4096²
+  // maps, a directional light's over four cascades of 8192², can run past it. Said, not hidden: the
+  // result is wrong there.
   bool overLoopLimit = false;
   for (std::size_t i = 0; i < lightCount; ++i) {
     const LightSetup& light = setup.lights[i];
     overLoopLimit = overLoopLimit ||
-                    (gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU && light.light.type == LightType::Point &&
+                    (gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU &&
                      (selections[i].technique == Technique::Reference || selections[i].technique == Technique::Epipolar) &&
-                     !light.shadowMaps.empty() && light.shadowMaps[0].depth.extent.width > kCpuDriverPointLightMapLimit);
+                     !light.shadowMaps.empty() &&
+                     walkCanOverrunCpuLoopBudget(light.light.type, light.shadowMaps.size(),
+                                                 light.shadowMaps[0].depth.extent.width));
   }
   if (overLoopLimit) {
-    note += "; CPU driver: a point light's texel walk with maps above " + std::to_string(kCpuDriverPointLightMapLimit) +
-            "^2 can exceed lavapipe's 65,535 loop iterations per invocation and come out too dark";
+    note += "; CPU driver: a light's texel walk over its maps (their size and count) can exceed lavapipe's 65,535 "
+            "loop iterations per invocation and come out too dark";
   }
 
   // The lights that run, each with the frame as it sees it; the lead light draws the debug view.
@@ -632,7 +631,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     l.epipolar = reports[i].epipolar;
     l.prefiltered = reports[i].prefiltered;
   }
-  stats.pointLightWalkOverCpuLoopLimit = overLoopLimit;
+  stats.walkOverCpuLoopLimit = overLoopLimit;
   stats.debugViewDrawn = drawsDebugView;
   stats.scatteringResolution = resolution;
   stats.passesRecorded.clear();

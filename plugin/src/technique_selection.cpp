@@ -23,6 +23,17 @@ TechniqueSelection selectTechnique(const TechniqueRequest& request) {
   return s;
 }
 
+bool walkCanOverrunCpuLoopBudget(LightType light, std::size_t mapCount, std::uint32_t mapSize) {
+  constexpr std::uint64_t kLoopBudget = 65535;
+  // A point light's walk stays within the budget up to 4096² (measured: docs/REFERENCE.md).
+  constexpr std::uint32_t kPointLightMapLimit = 4096;
+  if (light == LightType::Point) return mapSize > kPointLightMapLimit;
+  // A ray crosses up to 2·N texel edges in each map it walks (every cascade of a directional
+  // light); a step costs a directional light's walk one iteration, a spot light's two (quadrature).
+  const std::uint64_t perEdge = light == LightType::Spot ? 2 : 1;
+  return perEdge * 2 * std::uint64_t(mapSize) * mapCount > kLoopBudget;
+}
+
 const char* techniqueChangeNote(TechniqueChange change) {
   switch (change) {
     case TechniqueChange::None: return "";

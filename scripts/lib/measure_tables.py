@@ -72,17 +72,25 @@ def epipolar_tables(a):
     for r in rows:
         print(f"| {r['scene']} | {r['size']} | {maps(r)} | {r['profile']} | {r['reference']:.2f} | {r['total']:.2f} | "
               f"{r['reference'] / r['total']:.1f}× | {100 * r['rmse']:.2f}% | {r['nonFinite']} | {counts(r)} |")
+    # A frame of several lights names each light's passes "lightN/epipolar_…": summed over the lights.
+    def passes(r):
+        summed = {}
+        for name, ms in r["passes"].items():
+            name = name.split("/", 1)[-1]
+            summed[name] = summed.get(name, 0.0) + ms
+        return summed
+
     names = []
     for r in rows:
-        for name in r["passes"]:
+        for name in passes(r):
             if name.startswith("epipolar_") and name not in names:
                 names.append(name)
-    print("\nPer-pass GPU milliseconds (median over the frames):\n")
+    print("\nPer-pass GPU milliseconds (median over the frames; several lights: their sum):\n")
     print("| scene | size | map | profile | " + " | ".join(n.removeprefix("epipolar_") for n in names) + " |")
     print("|---|---|---|---|" + "---|" * len(names))
     for r in rows:
         print(f"| {r['scene']} | {r['size']} | {maps(r)} | {r['profile']} | " +
-              " | ".join(f"{r['passes'].get(n, 0.0):.3f}" for n in names) + " |")
+              " | ".join(f"{passes(r).get(n, 0.0):.3f}" for n in names) + " |")
     # A frame of several lights: each light's passes (tyndall-render's lightMilliseconds), beside
     # the Reference's for the same light; the composite and the sums are shared.
     several = [r for r in rows if len(r.get("lights", [])) > 1]

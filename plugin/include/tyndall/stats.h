@@ -150,9 +150,10 @@ struct Stats {
   std::optional<EpipolarStats> epipolar;        ///< when the epipolar technique ran this frame
   std::optional<PrefilteredStats> prefiltered;  ///< when the prefiltered technique ran this frame
   std::optional<EpipolarCounts> epipolarCounts; ///< once an epipolar frame's counts were read back
-  /// A CPU driver (lavapipe) ends a shader invocation's loops after 65,535 iterations; a point
-  /// light's texel walk over maps above 4096² can exceed that and come out too dark.
-  bool pointLightWalkOverCpuLoopLimit = false;
+  /// A CPU driver (lavapipe) ends a shader invocation's loops after 65,535 iterations; a light's
+  /// texel walk can exceed that and come out too dark: a point light's over maps above 4096², a
+  /// directional light's over cascades whose sides add up to 32,768 texels or more (four of 8192²).
+  bool walkOverCpuLoopLimit = false;
   bool debugViewDrawn = false;                  ///< false: debugOutput got the dimmed L_in alone
   std::string techniqueNote;                    ///< the above in one line for people; not for parsing
   std::vector<std::string> passesRecorded;      ///< the last `record`'s passes, in order

@@ -1,7 +1,8 @@
 // A view ray in a shadow map's clip space, and its clip to the map's bounds: shared by the
 // Reference's texel walk (common/texel_walk.glsl), the epipolar march and the epipolar
-// refinement's shadow test (epipolar/slice_ray.glsl), which must agree on the ray to the bit.
-// Needs `frame` (FrameConstants) in scope.
+// refinement's shadow test (epipolar/slice_ray.glsl), which must agree on the ray to the bit; the
+// texel they read, and the stretch of a view ray each cascade serves. Needs `frame`
+// (FrameConstants) and `shadow_maps` in scope.
 #ifndef TYNDALL_SHADOW_RAY_GLSL
 #define TYNDALL_SHADOW_RAY_GLSL
 
@@ -33,6 +34,19 @@ bool tyn_clip_to_shadow_map(TynShadowRay r, inout float t0, inout float t1) {
     }
   }
   return t0 < t1;
+}
+
+// Depth of one texel of one shadow map. Without shaderSampledImageArrayDynamicIndexing a sampler
+// array may only be indexed by constants.
+float tyn_shadow_texel(uint map, ivec2 texel) {
+  switch (map) {
+    case 0u: return texelFetch(shadow_maps[0], texel, 0).r;
+    case 1u: return texelFetch(shadow_maps[1], texel, 0).r;
+    case 2u: return texelFetch(shadow_maps[2], texel, 0).r;
+    case 3u: return texelFetch(shadow_maps[3], texel, 0).r;
+    case 4u: return texelFetch(shadow_maps[4], texel, 0).r;
+    default: return texelFetch(shadow_maps[5], texel, 0).r;
+  }
 }
 
 // The stretch [a, b] of [0, s] of the view ray that cascade `map` serves (of shadow_map_count;

@@ -86,19 +86,6 @@ bool tyn_next_texel(inout ivec2 texel, ivec2 step_dir, vec2 crossing, int size) 
   return tyn_texel_in_map(texel, size);
 }
 
-// Depth of one texel of one shadow map. Without shaderSampledImageArrayDynamicIndexing a sampler
-// array may only be indexed by constants.
-float tyn_shadow_texel(uint map, ivec2 texel) {
-  switch (map) {
-    case 0u: return texelFetch(shadow_maps[0], texel, 0).r;
-    case 1u: return texelFetch(shadow_maps[1], texel, 0).r;
-    case 2u: return texelFetch(shadow_maps[2], texel, 0).r;
-    case 3u: return texelFetch(shadow_maps[3], texel, 0).r;
-    case 4u: return texelFetch(shadow_maps[4], texel, 0).r;
-    default: return texelFetch(shadow_maps[5], texel, 0).r;
-  }
-}
-
 // The lit part [x, y] of the texel segment [t, t_next] of ray `r` in a texel of depth z_texel (empty
 // when y ≤ x): lit where z(t) ≤ z_texel · w(t), i.e. A t ≤ B. A texel at the clear value (1) has no
 // occluder: everything in it is lit, also beyond the map's far plane.

@@ -92,6 +92,7 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_DEBUG_IMAGE, rgba32f) uniform wri
 
 layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar; };
 
+#include "common/shadow_ray.glsl"
 #include "common/view_ray.glsl"
 #include "epipolar/epipolar_geometry.h"
 
@@ -101,17 +102,11 @@ vec2 tyn_output_extent() { return vec2(frame.output_extent); }
 int tyn_epipolar_tree_row(int slice, uint map) { return int(map * epipolar.slice_count) + slice; }
 
 // Depth of a texel of a map a slice's line runs in (the spot light's map, a cascade), 1 (no
-// occluder) outside the map: min_max_tree.h's TYN_MIN_MAX_SHADOW_TEXEL. Constant indices only,
-// as common/texel_walk.glsl's tyn_shadow_texel.
+// occluder) outside the map: min_max_tree.h's TYN_MIN_MAX_SHADOW_TEXEL.
 float tyn_epipolar_shadow_texel(uint map, ivec2 texel) {
   int size = int(frame.shadow_map_size);
   if (any(lessThan(texel, ivec2(0))) || any(greaterThanEqual(texel, ivec2(size)))) return 1.0;
-  switch (map) {
-    case 0u: return texelFetch(shadow_maps[0], texel, 0).r;
-    case 1u: return texelFetch(shadow_maps[1], texel, 0).r;
-    case 2u: return texelFetch(shadow_maps[2], texel, 0).r;
-    default: return texelFetch(shadow_maps[3], texel, 0).r;
-  }
+  return tyn_shadow_texel(map, texel);
 }
 
 // The plane of the surface at a pixel of the depth buffer (epipolar_geometry.h, "The surface around

@@ -311,8 +311,8 @@ void EpipolarTechnique::destroy(const Gpu& gpu) {
 Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) {
   const EpipolarSettings& settings = in.frame.epipolar != nullptr ? *in.frame.epipolar : in.choice.epipolar;
   const EpipolarFramePlan plan = planEpipolarFrame(in.frame, settings, in.extent);
-  if (Outcome o = prepareTextures(gpu, settings, plan.lineMaps, plan.treeSamples, plan.colorSamples, plan.shadowBlocks, in.targetExtent,
-                                  in.frameIndex);
+  if (Outcome o = prepareTextures(gpu, settings, plan.lineMaps, plan.treeSamples, plan.colorSamples,
+                                  plan.shadowBlocks, in.targetExtent, in.frameIndex);
       !o) {
     return o;
   }
@@ -348,8 +348,8 @@ void EpipolarTechnique::releaseRetired(const Gpu& gpu, std::uint64_t frameIndex,
 }
 
 Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t lineMaps,
-                                   std::uint32_t treeSamples, std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
-                                   std::uint64_t frameIndex) {
+                                           std::uint32_t treeSamples, std::uint32_t colorSamples,
+                                           VkExtent2D shadowBlocks, VkExtent2D extent, std::uint64_t frameIndex) {
   frameIndex_ = frameIndex;
   // The fix-up list, at the first frame that runs the technique (a context that only runs the
   // Reference holds none), with an entry per pixel of the L_in target; a larger target replaces it.

@@ -72,8 +72,8 @@ class EpipolarTechnique final : public ScatteringTechnique {
   /// `shadowBlocks`: the shadow-map block image's extent (shadowBlockExtent), 0 × 0 when the frame
   /// needs none. `extent`: the L_in target's, for the fix-up list.
   Outcome prepareTextures(const Gpu& gpu, const EpipolarSettings& settings, std::uint32_t lineMaps,
-                  std::uint32_t treeSamples, std::uint32_t colorSamples, VkExtent2D shadowBlocks, VkExtent2D extent,
-                  std::uint64_t frameIndex);
+                          std::uint32_t treeSamples, std::uint32_t colorSamples, VkExtent2D shadowBlocks,
+                          VkExtent2D extent, std::uint64_t frameIndex);
 
 
   /// A spot or point light's march and fix-up read the semi-analytic scattering table (yusov2013),

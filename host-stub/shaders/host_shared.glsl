@@ -25,6 +25,12 @@ struct MeshPush {
   mat4 clipFromWorld;
 };
 
+// Push constants of the translucent peel pass: x of `layer` is the layer being peeled.
+struct PeelPush {
+  mat4 clipFromWorld;
+  ivec4 layer;
+};
+
 // Uniform block of the lighting pass (set 0, binding 0).
 struct LightingParams {
   mat4 worldToShadowClip[6];  // point lights: faces +X, −X, +Y, −Y, +Z, −Z

@@ -116,6 +116,7 @@ bool buildSceneGeometry(const vk::GpuContext& gpu, VkCommandPool pool, const Sce
   std::vector<Vertex> vertices;
   std::vector<std::uint32_t> closedIndices;
   std::vector<std::uint32_t> openIndices;
+  std::vector<std::uint32_t> translucentIndices;
   out.casterPositions.clear();
   out.casterRanges.clear();
 
@@ -138,10 +139,11 @@ bool buildSceneGeometry(const vk::GpuContext& gpu, VkCommandPool pool, const Sce
         return false;
       }
       const bool closed = object.type == ObjectType::Box || object.type == ObjectType::Sphere;
-      std::vector<std::uint32_t>& indices = closed ? closedIndices : openIndices;
+      std::vector<std::uint32_t>& indices =
+          object.translucent() ? translucentIndices : closed ? closedIndices : openIndices;
       const auto base = static_cast<std::uint32_t>(vertices.size());
       for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-        vertices.push_back({mesh.positions[v], mesh.normals[v], mesh.albedo});
+        vertices.push_back({mesh.positions[v], mesh.normals[v], mesh.albedo, static_cast<float>(object.opacity)});
       }
       for (std::uint32_t index : mesh.indices) {
         if (index >= mesh.positions.size()) {
@@ -160,8 +162,10 @@ bool buildSceneGeometry(const vk::GpuContext& gpu, VkCommandPool pool, const Sce
 
   out.closedIndexCount = static_cast<std::uint32_t>(closedIndices.size());
   out.openIndexCount = static_cast<std::uint32_t>(openIndices.size());
+  out.translucentIndexCount = static_cast<std::uint32_t>(translucentIndices.size());
   std::vector<std::uint32_t> indices = std::move(closedIndices);
   indices.insert(indices.end(), openIndices.begin(), openIndices.end());
+  indices.insert(indices.end(), translucentIndices.begin(), translucentIndices.end());
   if (indices.empty()) return true;  // an empty scene draws nothing
   return uploadBuffer(gpu, pool, vertices.data(), vertices.size() * sizeof(Vertex),
                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, VK_PIPELINE_STAGE_2_VERTEX_ATTRIBUTE_INPUT_BIT,
@@ -186,6 +190,17 @@ void drawSceneGeometry(VkCommandBuffer cmd, const SceneGeometry& geometry, VkFro
     vkCmdSetCullMode(cmd, VK_CULL_MODE_NONE);
     vkCmdDrawIndexed(cmd, geometry.openIndexCount, 1, geometry.closedIndexCount, 0, 0);
   }
+}
+
+void drawTranslucentGeometry(VkCommandBuffer cmd, const SceneGeometry& geometry) {
+  if (geometry.translucentIndexCount == 0) return;
+  const VkBuffer vertexBuffer = geometry.vertices.buffer();
+  const VkDeviceSize offset = 0;
+  vkCmdBindVertexBuffers(cmd, 0, 1, &vertexBuffer, &offset);
+  vkCmdBindIndexBuffer(cmd, geometry.indices.buffer(), 0, VK_INDEX_TYPE_UINT32);
+  vkCmdSetFrontFace(cmd, VK_FRONT_FACE_CLOCKWISE);
+  vkCmdSetCullMode(cmd, VK_CULL_MODE_NONE);
+  vkCmdDrawIndexed(cmd, geometry.translucentIndexCount, 1, geometry.closedIndexCount + geometry.openIndexCount, 0, 0);
 }
 
 bool createMeshPipelineLayout(const vk::GpuContext& gpu, vk::UniquePipelineLayout& out, std::string& error) {

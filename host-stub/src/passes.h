@@ -61,6 +61,7 @@ struct Vertex {
   glm::vec3 position;
   glm::vec3 normal;
   glm::vec3 albedo;
+  float opacity;  // Object::opacity: below 1 in the translucent range only
 };
 
 struct SceneGeometry {
@@ -71,6 +72,9 @@ struct SceneGeometry {
   // Then open ones (plane quads, glTF meshes of unknown topology), drawn two-sided.
   std::uint32_t closedIndexCount = 0;
   std::uint32_t openIndexCount = 0;
+  // Then the translucent objects (Object::opacity < 1): not in the depth buffer or the opaque
+  // shadow maps, only in the translucent peel pass, drawn two-sided (each surface crossed counts).
+  std::uint32_t translucentIndexCount = 0;
   // Positions of the finite objects (not infinite planes), one range per object: the shadow
   // frusta are fitted to them.
   std::vector<glm::vec3> casterPositions;
@@ -84,6 +88,8 @@ bool buildSceneGeometry(const vk::GpuContext& gpu, VkCommandPool pool, const Sce
 /// the winding of front faces in the framebuffer: counter-clockwise for the y-flipped camera
 /// projection, clockwise for the shadow projections, which do not flip y.
 void drawSceneGeometry(VkCommandBuffer cmd, const SceneGeometry& geometry, VkFrontFace frontFace);
+/// Binds the geometry and draws its translucent range two-sided (pipeline and push constants bound).
+void drawTranslucentGeometry(VkCommandBuffer cmd, const SceneGeometry& geometry);
 /// The pipeline layout of the passes that draw the scene geometry: one MeshPush constant block.
 bool createMeshPipelineLayout(const vk::GpuContext& gpu, vk::UniquePipelineLayout& out, std::string& error);
 
@@ -122,6 +128,32 @@ class ShadowPass {
               const glm::mat4& worldToClip) const;
 
  private:
+  vk::UniquePipelineLayout layout_;
+  vk::UniquePipeline pipeline_;
+};
+
+/// The translucent objects as seen from one shadow map, depth-peeled into the layers of an
+/// R32G32_SFLOAT array (tyndall::ShadowMapDesc::translucentLayers): layer k holds the (depth, α) of
+/// the k-th surface from the light in front of the opaque depth, (1, 0) where there is none; the
+/// layer after the count is the overflow layer. One descriptor set per (frame slot, map, layer).
+class TranslucentPass {
+ public:
+  static constexpr VkFormat kLayerFormat = VK_FORMAT_R32G32_SFLOAT;
+  bool create(const vk::GpuContext& gpu, std::uint32_t setCount, std::string& error);
+  /// Points set `set` at the map's opaque depth and the layer before (layer 0: the opaque depth again).
+  void bind(std::uint32_t set, VkImageView opaqueDepth, VkImageView previousLayer);
+  /// Peels layer `layer` of `layers` with set `set`. The opaque map and the previous layer in
+  /// SHADER_READ_ONLY_OPTIMAL, the layer in COLOR_ATTACHMENT_OPTIMAL and `depth` (the map's size,
+  /// kShadowFormat) in DEPTH_STENCIL_ATTACHMENT_OPTIMAL; both are cleared.
+  void record(VkCommandBuffer cmd, const SceneGeometry& geometry, const vk::Image& layers, std::uint32_t layer,
+              std::uint32_t set, const vk::Image& depth, const glm::mat4& worldToClip) const;
+
+ private:
+  VkDevice device_ = VK_NULL_HANDLE;
+  vk::UniqueSampler sampler_;
+  vk::UniqueDescriptorSetLayout setLayout_;
+  vk::UniqueDescriptorPool pool_;
+  std::vector<VkDescriptorSet> sets_;
   vk::UniquePipelineLayout layout_;
   vk::UniquePipeline pipeline_;
 };

@@ -31,6 +31,11 @@ static_assert(gpu::kHostMaxCascades == static_cast<int>(kMaxSceneCascades));
 struct LightTargets {
   vk::Buffer params;  // gpu::LightingParams, host-visible
   std::vector<vk::Image> shadowMaps;
+  // With translucent objects: per map the peeled layers (layer count + 1 overflow layer), the
+  // peel pass's depth and its descriptor sets from firstPeelSet, (map, layer) in order.
+  std::vector<vk::Image> translucentLayers;
+  vk::Image peelDepth;
+  std::uint32_t firstPeelSet = 0;
 };
 
 struct FrameSlot {
@@ -176,6 +181,9 @@ struct Renderer::Impl {
   detail::ShadowPass shadowPass;
   detail::GBufferPass gbufferPass;
   detail::LightingPass lightingPass;
+  detail::TranslucentPass translucentPass;
+  std::uint32_t peelSetCount = 0;  // descriptor sets the translucent pass holds
+  std::uint32_t nextPeelSet = 0;   // the next one createSlot hands out
   CameraSetup camera;
   std::vector<LightState> lights;
   std::vector<FrameSlot> slots;
@@ -201,6 +209,7 @@ struct Renderer::Impl {
   bool updateViews(std::string& error);
   void writeParams(FrameSlot& slot) const;
   void recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const;
+  void recordTranslucentLayers(VkCommandBuffer cmd, const FrameSlot& slot) const;
   bool waitSlot(FrameSlot& slot, std::string& error);
   bool waitAll(std::string& error);
   bool readImage(const vk::Image& image, VkImageLayout layout, ImageRgba32f& out, std::string& error);
@@ -270,6 +279,10 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
     error = "cascades must be in [0, 4] (0: each light's own)";
     return false;
   }
+  if (settings.translucentLayers < 1 || settings.translucentLayers > kMaxTranslucentLayers) {
+    error = "translucentLayers must be in [1, " + std::to_string(kMaxTranslucentLayers) + "]";
+    return false;
+  }
   if (scene.cascades < 1 || scene.cascades > kMaxSceneCascades || !inUnitRange(scene.cascadeSplit)) {
     error = "shadowMap: cascades must be in [1, 4] and cascadeSplit in [0, 1]";
     return false;
@@ -318,6 +331,15 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
   for (LightState& state : lights) {
     if (!createLightColor(*state.light, state.color, error)) return false;
   }
+  // One peel descriptor set per frame slot, light, map and layer (the overflow layer included).
+  peelSetCount = 0;
+  if (geometry.translucentIndexCount > 0) {
+    for (const LightState& state : lights) {
+      peelSetCount += static_cast<std::uint32_t>(state.shadowViews.size()) * (settings.translucentLayers + 1);
+    }
+    peelSetCount *= settings.framesInFlight;
+  }
+  if (!translucentPass.create(gpu, peelSetCount, error)) return false;
   if (!shadowPass.create(gpu, error) || !gbufferPass.create(gpu, camera.depthCompare, error) ||
       !lightingPass.create(gpu, settings.backBufferFormat, settings.framesInFlight,
                            static_cast<std::uint32_t>(lights.size()), error)) {
@@ -325,6 +347,7 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
   }
 
   slots.resize(settings.framesInFlight);
+  nextPeelSet = 0;
   for (FrameSlot& slot : slots) {
     if (!createSlot(slot, error)) return false;
   }
@@ -396,6 +419,28 @@ bool Renderer::Impl::createSlot(FrameSlot& slot, std::string& error) {
                                      VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                                  "shadow map"};
       if (!map.create(gpu, desc, error)) return false;
+    }
+    if (geometry.translucentIndexCount == 0) continue;
+    const std::uint32_t layers = settings.translucentLayers + 1;
+    if (!targets.peelDepth.create(gpu, {detail::kShadowFormat, {size, size},
+                                        VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "translucent peel depth"},
+                                  error)) {
+      return false;
+    }
+    targets.firstPeelSet = nextPeelSet;
+    targets.translucentLayers.resize(targets.shadowMaps.size());
+    for (std::size_t m = 0; m < targets.shadowMaps.size(); ++m) {
+      vk::Image& image = targets.translucentLayers[m];
+      vk::Image::Desc desc{detail::TranslucentPass::kLayerFormat, {size, size},
+                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
+                               VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+                           "translucent layers"};
+      desc.layers = layers;
+      if (!image.create(gpu, desc, error)) return false;
+      for (std::uint32_t layer = 0; layer < layers; ++layer) {
+        const VkImageView previous = layer == 0 ? targets.shadowMaps[m].view() : image.layerView(layer - 1);
+        translucentPass.bind(nextPeelSet++, targets.shadowMaps[m].view(), previous);
+      }
     }
   }
   return true;
@@ -549,12 +594,15 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
       shadowPass.record(cmd, geometry, maps[i], glm::mat4(lights[light].shadowViews[i].worldToShadowClip));
     }
   }
+  if (geometry.translucentIndexCount > 0) recordTranslucentLayers(cmd, slot);
   gbufferPass.record(cmd, geometry, slot.depth, slot.albedo, slot.normal,
                      glm::mat4(camera.projection * camera.view), camera.depthClear);
 
-  for (const LightTargets& light : slot.lights) {
-    for (const vk::Image& map : light.shadowMaps) {
-      barriers.image(map.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead);
+  if (geometry.translucentIndexCount == 0) {  // else read by the peel pass already
+    for (const LightTargets& light : slot.lights) {
+      for (const vk::Image& map : light.shadowMaps) {
+        barriers.image(map.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead);
+      }
     }
   }
   barriers.image(slot.depth.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead)
@@ -571,6 +619,58 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
       .image(slot.depth.image(), kDepthAspect, kReadLayout, kDepthLayout,
              {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE}, depthAttachment)
       .record(cmd);
+}
+
+// The translucent objects peeled from every shadow map, after the shadow passes: the maps are read
+// from here on (peels, lighting, effects), and each layer is written, then read by the next peel
+// and by effects.
+void Renderer::Impl::recordTranslucentLayers(VkCommandBuffer cmd, const FrameSlot& slot) const {
+  using Scope = vk::Barriers::Scope;
+  const Scope previousUse{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
+  const Scope depthAttachment{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
+                                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+  const Scope depthWritten{depthAttachment.stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+  const Scope colorAttachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                              VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+  const Scope colorWritten{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+  const Scope fragmentRead{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+  constexpr VkImageLayout kDepthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+  constexpr VkImageLayout kColorLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+  const std::uint32_t layers = settings.translucentLayers + 1;
+
+  vk::Barriers barriers;
+  for (const LightTargets& light : slot.lights) {
+    for (std::size_t m = 0; m < light.shadowMaps.size(); ++m) {
+      barriers.image(light.shadowMaps[m].image(), VK_IMAGE_ASPECT_DEPTH_BIT, kDepthLayout, kReadLayout, depthWritten,
+                     fragmentRead);
+      barriers.image(light.translucentLayers[m].image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
+                     kColorLayout, previousUse, colorAttachment, 0, layers);
+    }
+  }
+  barriers.record(cmd);
+  for (std::size_t l = 0; l < slot.lights.size(); ++l) {
+    const LightTargets& light = slot.lights[l];
+    std::uint32_t set = light.firstPeelSet;
+    for (std::size_t m = 0; m < light.shadowMaps.size(); ++m) {
+      const vk::Image& image = light.translucentLayers[m];
+      for (std::uint32_t layer = 0; layer < layers; ++layer) {
+        if (layer > 0) {
+          barriers.image(image.image(), VK_IMAGE_ASPECT_COLOR_BIT, kColorLayout, kReadLayout, colorWritten,
+                         fragmentRead, layer - 1);
+        }
+        barriers.image(light.peelDepth.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, kDepthLayout,
+                       depthAttachment, depthAttachment);
+        barriers.record(cmd);
+        translucentPass.record(cmd, geometry, image, layer, set++, light.peelDepth,
+                               glm::mat4(lights[l].shadowViews[m].worldToShadowClip));
+      }
+      barriers.image(image.image(), VK_IMAGE_ASPECT_COLOR_BIT, kColorLayout, kReadLayout, colorWritten, fragmentRead,
+                     layers - 1);
+    }
+  }
+  barriers.record(cmd);
 }
 
 bool Renderer::Impl::waitSlot(FrameSlot& slot, std::string& error) {
@@ -676,8 +776,13 @@ bool Renderer::renderFrame(std::string& error) {
     const std::vector<vk::Image>& images = slot.lights[i].shadowMaps;
     for (std::size_t m = 0; m < images.size(); ++m) {
       const detail::ShadowView& view = r.lights[i].shadowViews[m];
-      maps.push_back({hostImage(images[m], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
-                      glm::mat4(view.worldToShadowClip), view.viewDepthNear, view.viewDepthFar});
+      HostShadowMap& map = maps.emplace_back(HostShadowMap{hostImage(images[m], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL),
+                                                           glm::mat4(view.worldToShadowClip), view.viewDepthNear,
+                                                           view.viewDepthFar});
+      if (!slot.lights[i].translucentLayers.empty()) {
+        map.translucentLayers = hostImage(slot.lights[i].translucentLayers[m], VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        map.translucentLayerCount = r.settings.translucentLayers;
+      }
     }
     if (!r.lights[i].light->colorTexture.empty()) {
       lightColor = hostImage(r.lights[i].color, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);

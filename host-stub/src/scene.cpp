@@ -371,7 +371,7 @@ void parsePlane(const Json& json, const std::string& path, Object& object) {
 }
 
 void parseBox(const Json& json, const std::string& path, Object& object) {
-  requireKnownKeys(json, path, {"type", "center", "halfExtents", "rotationDegrees", "albedo"});
+  requireKnownKeys(json, path, {"type", "center", "halfExtents", "rotationDegrees", "albedo", "opacity"});
   object.center = readVec3(json, path, "center");
   object.halfExtents = readVec3(json, path, "halfExtents");
   for (int i = 0; i < 3; ++i) {
@@ -381,7 +381,7 @@ void parseBox(const Json& json, const std::string& path, Object& object) {
 }
 
 void parseSphere(const Json& json, const std::string& path, Object& object) {
-  requireKnownKeys(json, path, {"type", "center", "radius", "albedo"});
+  requireKnownKeys(json, path, {"type", "center", "radius", "albedo", "opacity"});
   object.center = readVec3(json, path, "center");
   object.radius = readNumber(json, path, "radius");
   requirePositive(object.radius, child(path, "radius"));
@@ -389,7 +389,7 @@ void parseSphere(const Json& json, const std::string& path, Object& object) {
 
 void parseGltf(const Json& json, const std::string& path, const std::filesystem::path& baseDir,
                Object& object) {
-  requireKnownKeys(json, path, {"type", "path", "translation", "rotationDegrees", "scale", "albedo"});
+  requireKnownKeys(json, path, {"type", "path", "translation", "rotationDegrees", "scale", "albedo", "opacity"});
   const std::string filePath = child(path, "path");
   const std::filesystem::path file = toString(requireMember(json, path, "path"), filePath);
   if (file.empty()) fail(filePath, "must not be empty");
@@ -426,6 +426,8 @@ Object parseObject(const Json& json, const std::string& path, const std::filesys
   }
   object.albedo = readVec3(json, path, "albedo", object.albedo);
   requireInUnitRange(object.albedo, child(path, "albedo"));
+  object.opacity = readNumber(json, path, "opacity", 1.0);
+  if (!(object.opacity > 0.0 && object.opacity <= 1.0)) fail(child(path, "opacity"), "must be in (0, 1]");
   return object;
 }
 

@@ -72,6 +72,8 @@ Image& Image::operator=(Image&& other) noexcept {
     device_ = other.device_;
     image_ = std::exchange(other.image_, VK_NULL_HANDLE);
     view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+    layerViews_ = std::exchange(other.layerViews_, {});
+    layers_ = other.layers_;
     memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
     format_ = other.format_;
     extent_ = other.extent_;
@@ -93,7 +95,8 @@ bool Image::create(const GpuContext& gpu, const Desc& desc, std::string& error) 
   info.format = desc.format;
   info.extent = {desc.extent.width, desc.extent.height, 1};
   info.mipLevels = 1;
-  info.arrayLayers = 1;
+  layers_ = std::max(desc.layers, 1u);
+  info.arrayLayers = layers_;
   info.samples = VK_SAMPLE_COUNT_1_BIT;
   info.tiling = VK_IMAGE_TILING_OPTIMAL;
   info.usage = desc.usage;
@@ -110,13 +113,24 @@ bool Image::create(const GpuContext& gpu, const Desc& desc, std::string& error) 
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image_;
-  viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  viewInfo.viewType = layers_ > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   viewInfo.format = desc.format;
-  viewInfo.subresourceRange = {aspect_, 0, 1, 0, 1};
-  return check(vkCreateImageView(device_, &viewInfo, nullptr, &view_), "vkCreateImageView", error);
+  viewInfo.subresourceRange = {aspect_, 0, 1, 0, layers_};
+  if (!check(vkCreateImageView(device_, &viewInfo, nullptr, &view_), "vkCreateImageView", error)) return false;
+  if (layers_ == 1) return true;
+  viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
+  for (std::uint32_t layer = 0; layer < layers_; ++layer) {
+    viewInfo.subresourceRange = {aspect_, 0, 1, layer, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    if (!check(vkCreateImageView(device_, &viewInfo, nullptr, &view), "vkCreateImageView (layer)", error)) return false;
+    layerViews_.push_back(view);
+  }
+  return true;
 }
 
 void Image::reset() {
+  for (VkImageView view : layerViews_) vkDestroyImageView(device_, view, nullptr);
+  layerViews_.clear();
   if (view_ != VK_NULL_HANDLE) vkDestroyImageView(device_, view_, nullptr);
   if (image_ != VK_NULL_HANDLE) vkDestroyImage(device_, image_, nullptr);
   if (memory_ != VK_NULL_HANDLE) vkFreeMemory(device_, memory_, nullptr);
@@ -167,7 +181,8 @@ void Buffer::reset() {
 }
 
 Barriers& Barriers::image(VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout,
-                          VkImageLayout newLayout, Scope src, Scope dst) {
+                          VkImageLayout newLayout, Scope src, Scope dst, std::uint32_t layer,
+                          std::uint32_t layerCount) {
   VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
   barrier.srcStageMask = src.stages;
   barrier.srcAccessMask = src.access;
@@ -178,7 +193,7 @@ Barriers& Barriers::image(VkImage image, VkImageAspectFlags aspect, VkImageLayou
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
-  barrier.subresourceRange = {aspect, 0, 1, 0, 1};
+  barrier.subresourceRange = {aspect, 0, 1, layer, layerCount};
   images_.push_back(barrier);
   return *this;
 }

@@ -81,6 +81,7 @@ class Image {
     VkExtent2D extent{};
     VkImageUsageFlags usage = 0;
     const char* name = "image";  // for error messages
+    std::uint32_t layers = 1;    // > 1: an array; view() shows all layers (2D_ARRAY), layerView(k) one
   };
 
   Image() = default;
@@ -95,6 +96,8 @@ class Image {
 
   VkImage image() const { return image_; }
   VkImageView view() const { return view_; }
+  VkImageView layerView(std::uint32_t layer) const { return layerViews_.empty() ? view_ : layerViews_[layer]; }
+  std::uint32_t layers() const { return layers_; }
   VkFormat format() const { return format_; }
   VkExtent2D extent() const { return extent_; }
   VkImageAspectFlags aspect() const { return aspect_; }
@@ -103,6 +106,8 @@ class Image {
   VkDevice device_ = VK_NULL_HANDLE;
   VkImage image_ = VK_NULL_HANDLE;
   VkImageView view_ = VK_NULL_HANDLE;
+  std::vector<VkImageView> layerViews_;  // arrays only
+  std::uint32_t layers_ = 1;
   VkDeviceMemory memory_ = VK_NULL_HANDLE;
   VkFormat format_ = VK_FORMAT_UNDEFINED;
   VkExtent2D extent_{};
@@ -144,8 +149,10 @@ class Barriers {
     VkPipelineStageFlags2 stages = VK_PIPELINE_STAGE_2_NONE;
     VkAccessFlags2 access = VK_ACCESS_2_NONE;
   };
+  /// Array layers [layer, layer + layerCount) of mip 0.
   Barriers& image(VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout,
-                  VkImageLayout newLayout, Scope src, Scope dst);
+                  VkImageLayout newLayout, Scope src, Scope dst, std::uint32_t layer = 0,
+                  std::uint32_t layerCount = 1);
   Barriers& buffer(VkBuffer buffer, Scope src, Scope dst);
   void record(VkCommandBuffer cmd);
 

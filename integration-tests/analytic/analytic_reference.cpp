@@ -4,6 +4,11 @@
 // hits an object. For a convex object K the shadowed set S(K) = {p : ∃u ≥ 0, p + u·l ∈ K} is convex
 // (the Minkowski sum of K and a half-line), so it meets a view line in one interval; the shadowed
 // part of a ray is the union of one interval per object.
+//
+// A translucent object of opacity α lets (1 − α) through each surface the light ray crosses: from a
+// point of S(K) outside K two surfaces, from inside K one. Along a view line the light's
+// transmittance is therefore piecewise constant, changing only at the ends of the intervals
+// S(K) and K of each translucent object.
 #include "analytic_reference.h"
 
 #include <algorithm>
@@ -65,6 +70,7 @@ struct PreparedObject {
   glm::dvec3 halfExtents{0.0};  // box
   glm::dmat3 worldToLocal{1.0}; // box: Rᵀ
   double radius = 0.0;          // sphere
+  double opacity = 1.0;         // below 1: translucent
 };
 
 PreparedObject prepare(const host::Object& object) {
@@ -75,6 +81,7 @@ PreparedObject prepare(const host::Object& object) {
   prepared.halfExtents = object.halfExtents;
   prepared.worldToLocal = glm::transpose(host::rotationFromDegrees(object.rotationDegrees));
   prepared.radius = object.radius;
+  prepared.opacity = object.opacity;
   return prepared;
 }
 
@@ -87,15 +94,13 @@ double planeHit(const PreparedObject& plane, const glm::dvec3& o, const glm::dve
   return t > 0.0 ? t : kInfinity;
 }
 
-double sphereHit(const PreparedObject& sphere, const glm::dvec3& o, const glm::dvec3& d) {
+// The line o + t·d inside a sphere or a box: an interval of t (possibly empty).
+Interval sphereChord(const PreparedObject& sphere, const glm::dvec3& o, const glm::dvec3& d) {
   const glm::dvec3 q = o - sphere.centre;
-  const Interval chord = quadraticNonPositive(glm::dot(d, d), glm::dot(q, d), glm::dot(q, q) - sphere.radius * sphere.radius);
-  if (chord.empty()) return kInfinity;
-  if (chord.lo > 0.0) return chord.lo;
-  return chord.hi > 0.0 ? chord.hi : kInfinity;
+  return quadraticNonPositive(glm::dot(d, d), glm::dot(q, d), glm::dot(q, q) - sphere.radius * sphere.radius);
 }
 
-double boxHit(const PreparedObject& box, const glm::dvec3& o, const glm::dvec3& d) {
+Interval boxChord(const PreparedObject& box, const glm::dvec3& o, const glm::dvec3& d) {
   const glm::dvec3 localOrigin = box.worldToLocal * (o - box.centre);
   const glm::dvec3 localDir = box.worldToLocal * d;
   Interval inside;
@@ -104,19 +109,28 @@ double boxHit(const PreparedObject& box, const glm::dvec3& o, const glm::dvec3& 
     clipHalfLine(inside, localDir[i], box.halfExtents[i] - localOrigin[i]);
     clipHalfLine(inside, -localDir[i], box.halfExtents[i] + localOrigin[i]);
   }
-  if (inside.lo > inside.hi) return kInfinity;
-  if (inside.lo > 0.0) return inside.lo;
-  return inside.hi > 0.0 ? inside.hi : kInfinity;
+  return inside.lo > inside.hi ? kEmpty : inside;
+}
+
+Interval objectChord(const PreparedObject& object, const glm::dvec3& o, const glm::dvec3& d) {
+  switch (object.type) {
+    case host::ObjectType::Sphere: return sphereChord(object, o, d);
+    case host::ObjectType::Box: return boxChord(object, o, d);
+    case host::ObjectType::Plane:
+    case host::ObjectType::Gltf: break;
+  }
+  return kEmpty;
+}
+
+// The first crossing of a chord's surface with t > 0.
+double chordHit(const Interval& chord) {
+  if (chord.lo > chord.hi) return kInfinity;
+  if (chord.lo > 0.0) return chord.lo;
+  return chord.hi > 0.0 ? chord.hi : kInfinity;
 }
 
 double objectHit(const PreparedObject& object, const glm::dvec3& o, const glm::dvec3& d) {
-  switch (object.type) {
-    case host::ObjectType::Plane: return planeHit(object, o, d);
-    case host::ObjectType::Sphere: return sphereHit(object, o, d);
-    case host::ObjectType::Box: return boxHit(object, o, d);
-    case host::ObjectType::Gltf: break;
-  }
-  return kInfinity;
+  return object.type == host::ObjectType::Plane ? planeHit(object, o, d) : chordHit(objectChord(object, o, d));
 }
 
 // ---- shadowed intervals -----------------------------------------------------------------------
@@ -216,16 +230,20 @@ class AnalyticScene {
         irradiance_(scene.light.color * scene.light.intensity),
         sigmaT_(extinction(scene)) {
     objects_.reserve(scene.objects.size());
-    for (const host::Object& object : scene.objects) objects_.push_back(prepare(object));
+    for (const host::Object& object : scene.objects) {
+      (object.translucent() ? translucent_ : objects_).push_back(prepare(object));
+    }
   }
 
+  // Translucent objects are not in the depth buffer: view rays pass them.
   double firstSurface(const glm::dvec3& o, const glm::dvec3& d) const {
     double nearest = kInfinity;
     for (const PreparedObject& object : objects_) nearest = std::min(nearest, objectHit(object, o, d));
     return nearest;
   }
 
-  // Clipped to [0, tMax], merged and sorted into `out` (reused between rays to avoid allocations).
+  // By the opaque objects, clipped to [0, tMax], merged and sorted into `out` (reused between rays
+  // to avoid allocations).
   void shadowed(const glm::dvec3& o, const glm::dvec3& d, double tMax, std::vector<Interval>& out) const {
     out.clear();
     for (const PreparedObject& object : objects_) {
@@ -239,7 +257,7 @@ class AnalyticScene {
 
   glm::dvec3 inScattering(const glm::dvec3& o, const glm::dvec3& d, double s, std::vector<Interval>& scratch) const {
     shadowed(o, d, s, scratch);
-    const glm::dvec3 lit = litIntegral(scratch, s);
+    const glm::dvec3 lit = translucent_.empty() ? litIntegral(scratch, s) : translucentLitIntegral(o, d, s, scratch);
     const double cosTheta = glm::dot(d, toLight_);
     glm::dvec3 radiance(0.0);
     for (const host::MediumComponent& component : medium_) {
@@ -264,7 +282,50 @@ class AnalyticScene {
     return lit;
   }
 
-  std::vector<PreparedObject> objects_;
+  // litIntegral with translucent occluders: [0, s] cut at every end of a translucent object's S(K)
+  // and K interval, each piece weighted by the light's transmittance at its middle (constant on it).
+  glm::dvec3 translucentLitIntegral(const glm::dvec3& o, const glm::dvec3& d, double s,
+                                    const std::vector<Interval>& opaqueShadows) const {
+    struct Crossed {
+      Interval shadow, inside;
+      double opacity;
+    };
+    std::vector<Crossed> crossed;
+    std::vector<double> cuts{0.0, s};
+    for (const PreparedObject& object : translucent_) {
+      const Crossed c{objectShadow(object, o, d, toLight_), objectChord(object, o, d), object.opacity};
+      if (c.shadow.empty()) continue;
+      crossed.push_back(c);
+      for (double t : {c.shadow.lo, c.shadow.hi, c.inside.lo, c.inside.hi}) {
+        if (t > 0.0 && t < s) cuts.push_back(t);
+      }
+    }
+    for (const Interval& shadow : opaqueShadows) {
+      cuts.push_back(shadow.lo);
+      cuts.push_back(shadow.hi);
+    }
+    std::sort(cuts.begin(), cuts.end());
+    glm::dvec3 lit(0.0);
+    for (std::size_t i = 0; i + 1 < cuts.size(); ++i) {
+      const double a = cuts[i], b = cuts[i + 1];
+      if (!(b > a)) continue;
+      const double middle = 0.5 * (a + b);
+      const bool opaque = std::any_of(opaqueShadows.begin(), opaqueShadows.end(),
+                                      [&](const Interval& x) { return x.lo <= middle && middle <= x.hi; });
+      if (opaque) continue;
+      double transmittance = 1.0;
+      for (const Crossed& c : crossed) {
+        if (!(c.shadow.lo <= middle && middle <= c.shadow.hi)) continue;
+        const bool inside = c.inside.lo <= middle && middle <= c.inside.hi;
+        transmittance *= inside ? 1.0 - c.opacity : (1.0 - c.opacity) * (1.0 - c.opacity);
+      }
+      for (int c = 0; c < 3; ++c) lit[c] += transmittance * attenuatedLength(a, b, sigmaT_[c]);
+    }
+    return lit;
+  }
+
+  std::vector<PreparedObject> objects_;      // opaque
+  std::vector<PreparedObject> translucent_;
   std::vector<host::MediumComponent> medium_;
   glm::dvec3 toLight_;
   glm::dvec3 irradiance_;

@@ -38,7 +38,8 @@ bool renderAnalytic(const host::Scene& scene, std::uint32_t width, std::uint32_t
 glm::dvec3 cameraRayDirection(const host::Camera& camera, std::uint32_t px, std::uint32_t py,
                               std::uint32_t width, std::uint32_t height);
 
-/// Distance along the ray origin + t·dir (dir unit) to the first surface with t > 0; +∞ if none.
+/// Distance along the ray origin + t·dir (dir unit) to the first opaque surface with t > 0; +∞ if
+/// none (translucent objects are not in the depth buffer).
 /// From inside a box or sphere this is the exit point (what a rasterizer without culling shows).
 double firstSurfaceDistance(const host::Scene& scene, glm::dvec3 origin, glm::dvec3 dir);
 
@@ -47,12 +48,13 @@ double firstSurfaceDistance(const host::Scene& scene, glm::dvec3 origin, glm::dv
 double viewRayLength(const host::Scene& scene, glm::dvec3 dir);
 
 /// The parts of the segment origin + t·dir, t ∈ [0, tMax], from which the directional light is
-/// blocked by some object: sorted, merged, non-empty intervals.
+/// blocked by some opaque object: sorted, merged, non-empty intervals.
 std::vector<std::pair<double, double>> shadowedIntervals(const host::Scene& scene, glm::dvec3 origin,
                                                          glm::dvec3 dir, double tMax);
 
 /// L_in along origin + t·dir, t ∈ [0, s], dir unit (DESIGN.md, "Radiometry"):
-/// Σ_c σ_s,c · p_c(dot(dir, −lightDirection)) · E · ∫_lit exp(−σ_t t) dt, per RGB channel.
+/// Σ_c σ_s,c · p_c(dot(dir, −lightDirection)) · E · ∫ T_l(t) exp(−σ_t t) dt, per RGB channel, T_l the
+/// light's transmittance to the point: 0 behind an opaque object, (1 − α) per translucent surface.
 glm::dvec3 inScattering(const host::Scene& scene, glm::dvec3 origin, glm::dvec3 dir, double s);
 
 /// ∫_a^b exp(−σ t) dt for σ ≥ 0, accurate as σ → 0 (it tends to b − a); 0 when b ≤ a.

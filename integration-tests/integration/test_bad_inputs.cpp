@@ -72,6 +72,25 @@ std::vector<BadCase> badCases() {
          f.light.outerConeRadians = 0.4f;
        }},
       {"no shadow map", invalid, [](F& f, S&) { f.shadowMaps = {}; }},
+      {"translucent layer count without layers", invalid, [](F&, S& s) { s.shadowMaps[0].translucentLayerCount = 2; },
+       "shadowMaps[0].translucentLayers and translucentLayerCount go together"},
+      {"translucent layers of a depth format", Status::UnsupportedFormat, [](F&, S& s) {
+         s.shadowMaps[0].translucentLayers = s.shadowMaps[0].depth;
+         s.shadowMaps[0].translucentLayerCount = 2;
+       }, "shadowMaps[0].translucentLayers must be R32G32_SFLOAT"},
+      {"nine translucent layers", invalid, [](F&, S& s) {
+         s.shadowMaps[0].translucentLayers = s.shadowMaps[0].depth;
+         s.shadowMaps[0].translucentLayerCount = 9;
+       }, "shadowMaps[0].translucentLayerCount must be at most 8"},
+      {"cascades with different translucent layer counts", invalid, [](F& f, S& s) {
+         s.shadowMaps.assign(2, s.shadowMaps[0]);
+         s.shadowMaps[0].viewDepthFar = 10.0f;
+         s.shadowMaps[1].viewDepthNear = 10.0f;
+         s.shadowMaps[1].viewDepthFar = 50.0f;
+         s.shadowMaps[1].translucentLayers = s.shadowMaps[0].depth;
+         s.shadowMaps[1].translucentLayerCount = 2;
+         f.shadowMaps = s.shadowMaps;
+       }, "shadowMaps[1].translucentLayerCount must equal shadowMaps[0]'s"},
       {"point light with one shadow map", invalid, [](F& f, S&) { f.light.type = LightType::Point; }},
       {"five cascades", invalid, [](F& f, S& s) {
          s.shadowMaps.assign(5, s.shadowMaps[0]);

@@ -478,6 +478,85 @@ TEST(InScattering, ZeroExtinctionLimitGivesTheLitLength) {
   }
 }
 
+// ---- translucent occluders --------------------------------------------------------------------
+
+// Whether p lies inside a sphere or a box.
+bool insideObject(const host::Object& object, const glm::dvec3& p) {
+  if (object.type == host::ObjectType::Sphere) return glm::length(p - object.center) < object.radius;
+  const glm::dvec3 local = glm::transpose(host::rotationFromDegrees(object.rotationDegrees)) * (p - object.center);
+  return glm::all(glm::lessThan(glm::abs(local), object.halfExtents));
+}
+
+// The light's transmittance at p, along its own light ray: 0 when an opaque object is hit; per
+// translucent object, (1 − α) for each surface crossed, one from inside, two when the ray hits it
+// from outside (found with firstSurfaceDistance on the object alone, made opaque).
+double lightTransmittance(const host::Scene& scene, const glm::dvec3& p) {
+  const glm::dvec3 toLight = -glm::normalize(scene.light.direction);
+  double transmittance = 1.0;
+  for (const host::Object& object : scene.objects) {
+    host::Scene single = scene;
+    single.objects = {object};
+    single.objects[0].opacity = 1.0;
+    const bool hit = std::isfinite(firstSurfaceDistance(single, p, toLight));
+    if (!object.translucent()) {
+      if (hit) return 0.0;
+      continue;
+    }
+    const int crossings = insideObject(object, p) ? 1 : hit ? 2 : 0;
+    transmittance *= std::pow(1.0 - object.opacity, crossings);
+  }
+  return transmittance;
+}
+
+// The exact translucent integral against midpoint quadrature of the light's transmittance at each
+// point (a different construction: light rays, not intervals along the view ray), on camera rays
+// of analytic-glass.json: stacked panes, a ball and a box, some rays passing through them.
+TEST(InScattering, TranslucentOccludersMatchQuadratureAlongTheLightRays) {
+  const host::Scene scene = loadSample("analytic-glass.json");
+  host::Scene unshadowed = scene;
+  unshadowed.objects.clear();
+  const glm::dvec3 sigmaT = extinction(scene);
+  int partlyTranslucent = 0;
+  for (std::uint32_t y = 0; y < 9; ++y) {
+    for (std::uint32_t x = 0; x < 16; ++x) {
+      const glm::dvec3 dir = cameraRayDirection(scene.camera, x, y, 16, 9);
+      const double s = viewRayLength(scene, dir);
+      const glm::dvec3 exact = inScattering(scene, scene.camera.position, dir, s);
+      const glm::dvec3 unoccluded = inScattering(unshadowed, scene.camera.position, dir, s);
+      constexpr int kSteps = 4000;
+      const double h = s / kSteps;
+      glm::dvec3 sum(0.0);
+      bool translucentSeen = false;
+      for (int i = 0; i < kSteps; ++i) {
+        const double t = (i + 0.5) * h;
+        const double transmittance = lightTransmittance(scene, scene.camera.position + t * dir);
+        translucentSeen = translucentSeen || (transmittance > 0.0 && transmittance < 1.0);
+        sum += transmittance * glm::exp(-sigmaT * t) * h;
+      }
+      partlyTranslucent += translucentSeen ? 1 : 0;
+      for (int c = 0; c < 3; ++c) {
+        // The unshadowed value per unit of ∫ e^{−σ_t t} dt turns the quadrature into radiance.
+        const double quadrature = sum[c] * unoccluded[c] / attenuatedLength(0.0, s, sigmaT[c]);
+        EXPECT_NEAR(exact[c], quadrature, 2e-3 * unoccluded[c]) << "pixel (" << x << ", " << y << ") channel " << c;
+      }
+    }
+  }
+  EXPECT_GT(partlyTranslucent, 20) << "enough rays must pass through translucent shadows";
+}
+
+TEST(InScattering, TranslucentObjectsAreNotInTheDepthBuffer) {
+  host::Scene scene = loadSample("analytic-glass.json");
+  // A ray from the camera straight through the smoke ball: its surface is no hit.
+  const host::Object& ball = scene.objects[7];
+  ASSERT_EQ(ball.type, host::ObjectType::Sphere);
+  const glm::dvec3 dir = glm::normalize(ball.center - scene.camera.position);
+  const double through = firstSurfaceDistance(scene, scene.camera.position, dir);
+  scene.objects[7].opacity = 1.0;
+  const double opaque = firstSurfaceDistance(scene, scene.camera.position, dir);
+  EXPECT_NEAR(opaque, glm::length(ball.center - scene.camera.position) - ball.radius, 1e-9);
+  EXPECT_GT(through, opaque + 2.0 * ball.radius - 1e-9);
+}
+
 // ---- whole images -----------------------------------------------------------------------------
 
 TEST(RenderAnalytic, PixelsAreThePerRayQueries) {

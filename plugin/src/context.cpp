@@ -106,6 +106,8 @@ struct Context::Impl {
   VkSampler linear = VK_NULL_HANDLE;   // the light-colour texture's
   OwnedImage white;                    // 1×1 white: the light-colour texture of frames without one
   bool whiteCleared = false;
+  OwnedImage noTranslucentLayers;      // 1×1, one layer of (1, 0): the layers of maps without any
+  bool noTranslucentLayersCleared = false;
   std::vector<MappedBuffer> constants;  // one per frame slot
   GpuTimer timer;
   TechniqueSet first;  // FrameDesc::light's: compiles the pipelines every light's instance uses
@@ -196,6 +198,11 @@ Outcome Context::Impl::createSizeIndependent() {
   if (Outcome o = createSampler(gpu, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, linear); !o) return o;
   if (Outcome o = createImage(gpu, VK_FORMAT_R8G8B8A8_UNORM, {1, 1},
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, white);
+      !o) {
+    return o;
+  }
+  if (Outcome o = createImageArray(gpu, VK_FORMAT_R32G32_SFLOAT, {1, 1}, 1,
+                                   VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, noTranslucentLayers);
       !o) {
     return o;
   }
@@ -333,6 +340,7 @@ void Context::Impl::destroyAll() {
   for (MappedBuffer& buffer : constants) destroyBuffer(gpu, buffer);
   constants.clear();
   destroyImage(gpu, white);
+  destroyImage(gpu, noTranslucentLayers);
   if (linear != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, linear, gpu.allocator);
   linear = VK_NULL_HANDLE;
   if (nearest != VK_NULL_HANDLE) gpu.vk.vkDestroySampler(gpu.device, nearest, gpu.allocator);
@@ -489,7 +497,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     requestedTechniques[i] = frame.technique != Technique::None ? frame.technique : choices[i]->technique;
     selections[i] = selectTechnique({requestedTechniques[i], light.light.type, !light.lightColor.empty(), extent,
                                      light.skipped == LightSkipped::No,
-                                     hasCascades(light.light.type, light.shadowMaps.size())});
+                                     hasCascades(light.light.type, light.shadowMaps.size()),
+                                     !light.shadowMaps.empty() && light.shadowMaps[0].translucentLayerCount > 0});
     if (lead == lightCount && selections[i].technique != Technique::None) lead = i;
   }
   if (lead == lightCount) lead = 0;
@@ -630,6 +639,9 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     l.skipped = setup.lights[i].skipped;
     l.epipolar = reports[i].epipolar;
     l.prefiltered = reports[i].prefiltered;
+    l.translucentLayers = selections[i].technique == Technique::Reference && !setup.lights[i].shadowMaps.empty()
+                              ? setup.lights[i].shadowMaps[0].translucentLayerCount
+                              : 0;
   }
   stats.walkOverCpuLoopLimit = overLoopLimit;
   stats.debugViewDrawn = drawsDebugView;
@@ -640,6 +652,9 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   timer.beginFrame(gpu, cmd, slot, stats.frameIndex);
   // Counts the slot's previous frame left, whichever technique runs now (the first light's).
   for (ScatteringTechnique* t : first.all()) t->readBack(slot, stats);
+  // Every light's Reference reports translucent layers that overflowed.
+  stats.translucentLayersOverflowed = false;
+  forEachInstance([&](ScatteringTechnique& t) { t.readBackFlags(slot, stats); });
 
   if (!setup.attenuates) {
     // σ_t = 0: out = in, L_in = 0, T = 1. Only requested AOVs are written.
@@ -839,7 +854,28 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
     bindings.shadowLayouts[i] = sampledDepthLayout(map.layout);
     acquire.image(map.image, barrierAspect(map.format), map.arrayLayer, hostBefore(map),
                   {bindings.shadowLayouts[i], compute, VK_ACCESS_SHADER_READ_BIT});
+    // The translucent layers and the overflow layer after them.
+    const ImageRef& layers = frame.shadowMaps[i].translucentLayers;
+    if (!layers.empty()) {
+      bindings.translucentLayers[i] = layers.view;
+      bindings.translucentLayouts[i] = sampledColorLayout(layers.layout);
+      acquire.image(layers.image, VK_IMAGE_ASPECT_COLOR_BIT, layers.arrayLayer, hostBefore(layers),
+                    {bindings.translucentLayouts[i], compute, VK_ACCESS_SHADER_READ_BIT},
+                    frame.shadowMaps[i].translucentLayerCount + 1);
+    }
   }
+  if (!noTranslucentLayersCleared) {
+    imageBarrier(gpu, cmd, noTranslucentLayers.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, compute, 0},
+                 {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
+    const VkClearColorValue noSurface{{1.0f, 0.0f, 0.0f, 0.0f}};
+    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    gpu.vk.vkCmdClearColorImage(cmd, noTranslucentLayers.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &noSurface, 1, &range);
+    acquire.image(noTranslucentLayers.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
+                  {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
+                  {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, compute, VK_ACCESS_SHADER_READ_BIT});
+    noTranslucentLayersCleared = true;
+  }
+  bindings.noTranslucentLayers = noTranslucentLayers.view;
 
   if (frame.debugView != DebugView::None && technique.drawsDebugViews()) {
     bindings.debug = debugImage.view;
@@ -862,6 +898,11 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
     const ImageRef& map = frame.shadowMaps[i].depth;
     release.image(map.image, barrierAspect(map.format), map.arrayLayer, {bindings.shadowLayouts[i], compute, 0},
                   hostAfter(map));
+    const ImageRef& layers = frame.shadowMaps[i].translucentLayers;
+    if (!layers.empty()) {
+      release.image(layers.image, VK_IMAGE_ASPECT_COLOR_BIT, layers.arrayLayer, {bindings.translucentLayouts[i], compute, 0},
+                    hostAfter(layers), frame.shadowMaps[i].translucentLayerCount + 1);
+    }
   }
 }
 

@@ -199,6 +199,36 @@ Outcome checkCascades(const LightSetup& light, const std::string& prefix) {
   return {};
 }
 
+// Map `i`'s translucent layers (ShadowMapDesc::translucentLayers): as many as map 0's, the map's
+// size, (depth, α) in R32G32_SFLOAT.
+Outcome checkTranslucentLayers(const LightSetup& light, std::size_t i, const std::string& name) {
+  const ShadowMapDesc& map = light.shadowMaps[i];
+  const std::uint32_t count = light.shadowMaps[0].translucentLayerCount;
+  if (map.translucentLayerCount != count) {
+    return invalid(name + ".translucentLayerCount must equal shadowMaps[0]'s: every map of a light has as many "
+                          "translucent layers");
+  }
+  if (map.translucentLayers.empty() != (count == 0)) {
+    return invalid(name + ".translucentLayers and translucentLayerCount go together: an image with 1 to " +
+                   std::to_string(kMaxTranslucentLayers) + " layers, or none with 0");
+  }
+  if (count == 0) return {};
+  if (count > kMaxTranslucentLayers) {
+    return invalid(name + ".translucentLayerCount must be at most " + std::to_string(kMaxTranslucentLayers));
+  }
+  const std::string field = name + ".translucentLayers";
+  if (Outcome o = checkImage(map.translucentLayers, field.c_str()); !o) return o;
+  if (map.translucentLayers.format != VK_FORMAT_R32G32_SFLOAT) {
+    return failure(Status::UnsupportedFormat, field + " must be R32G32_SFLOAT (depth, opacity), got VkFormat " +
+                                                  std::to_string(static_cast<int>(map.translucentLayers.format)));
+  }
+  if (map.translucentLayers.extent.width != map.depth.extent.width ||
+      map.translucentLayers.extent.height != map.depth.extent.height) {
+    return invalid(field + " must be the size of its shadow map");
+  }
+  return {};
+}
+
 // A light's colour texture and shadow maps; `prefix` as for checkLight.
 Outcome checkLightImages(const Gpu& gpu, const LightSetup& light, const std::string& prefix) {
   if (!light.lightColor.empty()) {
@@ -226,6 +256,7 @@ Outcome checkLightImages(const Gpu& gpu, const LightSetup& light, const std::str
     if (!finite(map.worldToShadowClip) || !invertible(toMat(map.worldToShadowClip))) {
       return invalid(name + ".worldToShadowClip must be finite and invertible");
     }
+    if (Outcome o = checkTranslucentLayers(light, i, name); !o) return o;
   }
   return checkCascades(light, prefix);
 }
@@ -247,6 +278,7 @@ void setLightConstants(const LightSetup& l, const glm::dmat4& worldToView, gpu::
   k.shadow_map_count = static_cast<std::uint32_t>(l.shadowMaps.size());
   k.shadow_map_size = l.shadowMaps.empty() ? 0 : l.shadowMaps[0].depth.extent.width;
   k.has_light_color = l.lightColor.empty() ? 0u : 1u;
+  k.translucent_layer_count = l.shadowMaps.empty() ? 0u : l.shadowMaps[0].translucentLayerCount;
   // View depth is −z in view space: row 2 of the world → view matrix, negated.
   k.view_depth_axis = -glm::vec4(glm::row(worldToView, 2));
   k.cascade_far = glm::vec4(std::numeric_limits<float>::max());

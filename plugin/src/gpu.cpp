@@ -196,7 +196,7 @@ void BarrierBatch::memory(VkPipelineStageFlags srcStage, VkAccessFlags srcAccess
 namespace {
 
 VkImageMemoryBarrier imageMemoryBarrier(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from,
-                                        ImageUse to) {
+                                        ImageUse to, std::uint32_t layerCount = 1) {
   VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   barrier.srcAccessMask = from.access;
   barrier.dstAccessMask = to.access;
@@ -205,14 +205,15 @@ VkImageMemoryBarrier imageMemoryBarrier(VkImage image, VkImageAspectFlags aspect
   barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
   barrier.image = image;
-  barrier.subresourceRange = {aspect, 0, 1, layer, 1};
+  barrier.subresourceRange = {aspect, 0, 1, layer, layerCount};
   return barrier;
 }
 
 }  // namespace
 
-void BarrierBatch::image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to) {
-  images_.push_back(imageMemoryBarrier(image, aspect, layer, from, to));
+void BarrierBatch::image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to,
+                         std::uint32_t layerCount) {
+  images_.push_back(imageMemoryBarrier(image, aspect, layer, from, to, layerCount));
   src_ |= from.stage;
   dst_ |= to.stage;
 }
@@ -325,6 +326,16 @@ std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadowMapImageInfos(const Scat
     const bool used = b.shadowMaps[i] != VK_NULL_HANDLE;
     infos[i] = {VK_NULL_HANDLE, used ? b.shadowMaps[i] : b.shadowMaps[0],
                 used ? b.shadowLayouts[i] : b.shadowLayouts[0]};
+  }
+  return infos;
+}
+
+std::array<VkDescriptorImageInfo, kMaxShadowMaps> translucentLayerImageInfos(const ScatteringBindings& b) {
+  std::array<VkDescriptorImageInfo, kMaxShadowMaps> infos{};
+  for (std::uint32_t i = 0; i < kMaxShadowMaps; ++i) {
+    const bool used = b.translucentLayers[i] != VK_NULL_HANDLE;
+    infos[i] = {VK_NULL_HANDLE, used ? b.translucentLayers[i] : b.noTranslucentLayers,
+                used ? b.translucentLayouts[i] : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   }
   return infos;
 }

@@ -97,7 +97,9 @@ class BarrierBatch {
  public:
   void memory(VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
               VkAccessFlags dstAccess);
-  void image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to);
+  /// Layers [layer, layer + layerCount) of mip 0.
+  void image(VkImage image, VkImageAspectFlags aspect, std::uint32_t layer, ImageUse from, ImageUse to,
+             std::uint32_t layerCount = 1);
   /// Records the batch (nothing when empty) and empties it.
   void record(const Gpu& gpu, VkCommandBuffer cmd);
 
@@ -174,6 +176,11 @@ struct ScatteringBindings {
   VkImageView lightColor = VK_NULL_HANDLE;
   VkImageLayout lightColorLayout = VK_IMAGE_LAYOUT_UNDEFINED;
   bool hasLightColor = false;
+  /// Each map's translucent layers (ShadowMapDesc::translucentLayers, 2D_ARRAY views); null: none.
+  std::array<VkImageView, kMaxShadowMaps> translucentLayers{};
+  std::array<VkImageLayout, kMaxShadowMaps> translucentLayouts{};
+  /// One empty layer ((1, 0): no surface), 2D_ARRAY, bound where a map has no translucent layers.
+  VkImageView noTranslucentLayers = VK_NULL_HANDLE;
   LightType light = LightType::Directional;
   /// The debug view's target (storage, GENERAL) when the frame asks for one, else null.
   VkImageView debug = VK_NULL_HANDLE;
@@ -183,5 +190,7 @@ struct ScatteringBindings {
 /// Descriptors of the shadow-map array; unused elements repeat map 0, because every element
 /// must be valid without the partiallyBound feature.
 std::array<VkDescriptorImageInfo, kMaxShadowMaps> shadowMapImageInfos(const ScatteringBindings& bindings);
+/// Descriptors of the translucent layers' array; maps without layers get `noTranslucentLayers`.
+std::array<VkDescriptorImageInfo, kMaxShadowMaps> translucentLayerImageInfos(const ScatteringBindings& bindings);
 
 }  // namespace tyndall

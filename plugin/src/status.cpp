@@ -61,6 +61,7 @@ const char* to_string(TechniqueChange change) noexcept {
     case TechniqueChange::PrefilteredHasNoLightColor: return "prefiltered-has-no-light-color";
     case TechniqueChange::PrefilteredNeedsOneShadowMap: return "prefiltered-needs-one-shadow-map";
     case TechniqueChange::EpipolarNeeds2x2: return "epipolar-needs-2x2";
+    case TechniqueChange::TranslucentNeedsReference: return "translucent-needs-reference";
   }
   return "unknown";
 }

@@ -95,6 +95,8 @@ class ScatteringTechnique {
   /// Reads what the slot's previous frame counted on the GPU (it has completed when the slot comes
   /// round again) into `stats`; nothing by default.
   virtual void readBack(std::uint32_t /*slot*/, Stats& /*stats*/) {}
+  /// The same for flags that every light's instance raises (ORed into `stats`); nothing by default.
+  virtual void readBackFlags(std::uint32_t /*slot*/, Stats& /*stats*/) {}
   /// Destroys what earlier frames retired (textures of other sizes) once no frame in flight can use
   /// it. Called every frame for every technique, whichever runs, so that a technique that stopped
   /// running does not keep what it retired.

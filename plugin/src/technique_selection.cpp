@@ -7,6 +7,11 @@ TechniqueSelection selectTechnique(const TechniqueRequest& request) {
   // buffer (DESIGN.md "Model only what the scene requires").
   if (!request.scatters) return {Technique::None, TechniqueChange::NothingScatters};
   TechniqueSelection s{request.requested, TechniqueChange::None};
+  // Translucent layers are integrated exactly by the texel walk; the epipolar trees and the
+  // prefiltered moments do not read them yet.
+  if (request.translucentLayers && s.technique != Technique::Reference) {
+    return {Technique::Reference, TechniqueChange::TranslucentNeedsReference};
+  }
   // Rectified shadow maps are built for directional lights only, from one map, and a light-colour
   // texture varies along the light rays a rectified texel averages over.
   if (s.technique == Technique::Prefiltered && request.light != LightType::Directional) {
@@ -46,6 +51,8 @@ const char* techniqueChangeNote(TechniqueChange change) {
     case TechniqueChange::PrefilteredNeedsOneShadowMap:
       return "prefiltered rectifies one shadow map, not cascades: epipolar instead";
     case TechniqueChange::EpipolarNeeds2x2: return "output smaller than 2x2: Reference instead of epipolar";
+    case TechniqueChange::TranslucentNeedsReference:
+      return "translucent layers are integrated by the Reference only: Reference instead";
   }
   return "";
 }

@@ -20,6 +20,7 @@ struct TechniqueRequest {
   VkExtent2D extent{};
   bool scatters = true;  ///< σ_s > 0 and the light on (FrameSetup::scatters)
   bool cascades = false;  ///< hasCascades
+  bool translucentLayers = false;  ///< the light's maps come with translucent layers (ShadowMapDesc)
 };
 
 struct TechniqueSelection {

@@ -46,7 +46,7 @@ bool parseName(const std::string& name, std::initializer_list<E> values, E& out)
 std::string usage() {
   return "usage: tyndall-render SCENE.json [--profile reference|high|balanced|performance|auto] [--budget-ms B]\n"
          "         [--technique reference|epipolar|prefiltered] [--width W] [--height H] [--shadow-map-size N]\n"
-         "         [--cascades K]\n"
+         "         [--cascades K] [--translucent-layers N]\n"
          "         [--output FILE.png] [--output-hdr FILE.exr] [--aov-scattering FILE.exr]\n"
          "         [--aov-transmittance FILE.exr] [--timings FILE.json] [--frames N]\n"
          "         [--reverse-z] [--infinite-far] [--validation] [--no-effect] [--no-storage-back-buffer]\n"
@@ -57,6 +57,8 @@ std::string usage() {
          "    composite upsamples it; the Reference always runs at full)\n"
          "  --cascades: shadow maps per directional light, 1 to 4 cascades splitting the view depths\n"
          "    (overrides the scene's \"shadowMap\": {\"cascades\": K}; spot and point lights keep one map)\n"
+         "  --translucent-layers: depth-peeled layers of translucent objects per shadow map, 1 to 8\n"
+         "    (default 4; a texel with more surfaces sets stats.translucentLayersOverflowed)\n"
          "  --budget-ms: Tyndall's GPU-time budget for --profile auto in milliseconds (default 4)\n"
          "  --no-storage-back-buffer: create the back buffer without STORAGE usage, so Tyndall composites\n"
          "    with a fragment pass instead of a compute pass writing the back buffer in place\n"
@@ -127,6 +129,12 @@ bool parseCommandLine(int argc, const char* const* argv, RenderOptions& options,
       if (!value(v)) return false;
       if (!parseUint(v, 1, host::kMaxSceneCascades, options.cascades)) {
         error = "--cascades must be an integer in [1, 4] (got '" + v + "')";
+        return false;
+      }
+    } else if (arg == "--translucent-layers") {
+      if (!value(v)) return false;
+      if (!parseUint(v, 1, host::kMaxTranslucentLayers, options.translucentLayers)) {
+        error = "--translucent-layers must be an integer in [1, 8] (got '" + v + "')";
         return false;
       }
     } else if (arg == "--resolution") {
@@ -221,6 +229,7 @@ host::RenderSettings renderSettingsFor(const RenderOptions& options, bool wantAo
   settings.height = options.height;
   settings.shadowMapSize = options.shadowMapSize;
   settings.cascades = options.cascades;
+  settings.translucentLayers = options.translucentLayers;
   settings.depth = options.depth;
   settings.infiniteFar = options.infiniteFar;
   settings.aovImages = wantAovs || !options.aovScattering.empty() || !options.aovTransmittance.empty() ||
@@ -335,6 +344,10 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["scatteringResolution"] = to_string(result.stats.scatteringResolution);
   json["dispatches"] = result.stats.dispatches;
   json["barriers"] = result.stats.barriers;
+  if (!result.stats.lights.empty() && result.stats.lights[0].translucentLayers > 0) {
+    json["translucentLayers"] = result.stats.lights[0].translucentLayers;
+    json["translucentLayersOverflowed"] = result.stats.translucentLayersOverflowed;  // from an earlier frame
+  }
   nlohmann::ordered_json passes = nlohmann::ordered_json::object();
   // In recording order of the last frame.
   for (const std::string& name : result.stats.passesRecorded) {

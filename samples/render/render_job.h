@@ -27,6 +27,7 @@ struct RenderOptions {
   std::uint32_t height = 360;
   std::uint32_t shadowMapSize = 0;      ///< 0: the scene's
   std::uint32_t cascades = 0;           ///< --cascades: every directional light's, 1..4; 0: each light's own
+  std::uint32_t translucentLayers = 4;  ///< --translucent-layers: peeled layers per shadow map, 1..8
   std::uint32_t frames = 1;
   std::string outputPng;
   std::string outputExr;

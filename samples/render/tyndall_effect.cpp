@@ -121,7 +121,13 @@ FrameDesc makeFrameDesc(const host::PostProcessInputs& inputs, Profile profile, 
   const auto toShadowMaps = [](const std::vector<host::HostShadowMap>& maps) {
     std::vector<ShadowMapDesc> out;
     for (const host::HostShadowMap& map : maps) {
-      out.push_back({toImageRef(map.depth), toMat4(map.worldToShadowClip), map.viewDepthNear, map.viewDepthFar});
+      ShadowMapDesc& desc =
+          out.emplace_back(ShadowMapDesc{toImageRef(map.depth), toMat4(map.worldToShadowClip), map.viewDepthNear,
+                                         map.viewDepthFar});
+      if (map.translucentLayerCount > 0) {
+        desc.translucentLayers = toImageRef(map.translucentLayers);
+        desc.translucentLayerCount = map.translucentLayerCount;
+      }
     }
     return out;
   };

@@ -10,6 +10,7 @@ TYN_BEGIN
 TYN_CONST uint TYN_MAX_MEDIUM_COMPONENTS = 4u;
 TYN_CONST uint TYN_MAX_SHADOW_MAPS = 6u;
 TYN_CONST uint TYN_MAX_CASCADES = 4u;  // a directional light's cascaded shadow maps
+TYN_CONST uint TYN_MAX_TRANSLUCENT_LAYERS = 8u;  // depth-peeled translucent layers per map
 
 TYN_CONST uint TYN_LIGHT_DIRECTIONAL = 0u;
 TYN_CONST uint TYN_LIGHT_SPOT = 1u;
@@ -34,7 +35,9 @@ TYN_CONST uint TYN_BINDING_SHADOW_MAPS = 2u;  // TYN_MAX_SHADOW_MAPS shadow maps
 // The Reference's (reference/reference_scattering.comp, reference_technique.cpp).
 TYN_CONST uint TYN_REFERENCE_BINDING_OUT_SCATTERING = 3u;
 TYN_CONST uint TYN_REFERENCE_BINDING_LIGHT_COLOR = 4u;
-TYN_CONST uint TYN_REFERENCE_BINDING_COUNT = 5u;
+TYN_CONST uint TYN_REFERENCE_BINDING_TRANSLUCENT_LAYERS = 5u;    // TYN_MAX_SHADOW_MAPS 2D arrays
+TYN_CONST uint TYN_REFERENCE_BINDING_TRANSLUCENT_OVERFLOW = 6u;  // one uint: 1 once a ray met one
+TYN_CONST uint TYN_REFERENCE_BINDING_COUNT = 7u;
 // The composite's and its T AOV's (composite/, composite_pass.cpp): L_in read, or T written.
 TYN_CONST uint TYN_COMPOSITE_BINDING_TARGET = 2u;
 TYN_CONST uint TYN_COMPOSITE_BINDING_COUNT = 3u;
@@ -82,7 +85,7 @@ struct FrameConstants {
   uint shadow_map_count;   // 1 (spot), 1..4 cascades (directional) or 6 (point)
   uint shadow_map_size;    // texels along each side of every map
   uvec2 output_extent;     // pixels
-  uint pad2;
+  uint translucent_layer_count;  // 0, or depth-peeled translucent layers per map (texel_walk.glsl)
   uint has_light_color;    // 1 when a light-colour texture is bound (common/light_color.glsl)
   // The L_in target (ScatteringResolution): target pixel p stands for output pixel
   // p · target_stride + target_offset (view_ray.glsl's tyn_output_pixel); stride 1 at full resolution.

@@ -17,6 +17,8 @@
 //   TYN_WALK_IN_STEPS       uint tyn_walk_steps() is the number of steps per map (0: the texel walk);
 //                           vec3 tyn_step_shadow_map(map, origin, dir, t0, t1, part, parts, directional)
 //                           marches in that many steps instead.
+//   TYN_WALK_TRANSLUCENT    the lit parts are attenuated by the frame's translucent layers
+//                           (common/translucent_layers.glsl, included before this file).
 // With none defined the walk is the Reference's. The epipolar fix-up and march define them
 // (epipolar/fixup.comp, epipolar/march.comp).
 #ifndef TYNDALL_TEXEL_WALK_GLSL
@@ -155,6 +157,53 @@ void tyn_walk_add_lit_part(inout vec3 sum, inout vec2 section, bool directional,
   }
 }
 
+#ifdef TYN_WALK_TRANSLUCENT
+// The part [a, b] of [x, y] behind a surface at depth z_layer (empty when b ≤ a): where the texel's
+// lit part (tyn_texel_lit_part, a half-line cut to [x, y]) is not.
+vec2 tyn_texel_behind_part(TynShadowRay r, float z_layer, float x, float y) {
+  vec2 lit = tyn_texel_lit_part(r, z_layer, x, y);
+  if (lit.y <= lit.x) return vec2(x, y);
+  return lit.x > x ? vec2(x, lit.x) : vec2(lit.y, y);
+}
+
+// A lit part's integral (tyn_walk_add_lit_part's, without sections).
+vec3 tyn_walk_piece(bool directional, TynLocalLightRay local_ray, vec3 origin, vec3 dir, float a, float b) {
+  if (directional) {
+    return tyn_light_color_at(origin + dir * (0.5 * (a + b))) * tyn_transmittance_integral(a, b, frame.extinction);
+  }
+  return tyn_local_light_piece(local_ray, a, b, false);
+}
+
+// Adds the lit part [a, b] of texel `texel` of map `map` through its translucent layers, exactly.
+// The light reaching t keeps T(t) = Π (1 − α_k) over the layers t lies behind. Peeled layers are
+// sorted by depth, and the ray's depth is monotonic in t within a texel, so the sets "behind layer
+// k" are nested: T = P_n where n layers are behind, P_n = Π_{k<n} (1 − α_k), and since
+// P_{k+1} − P_k = −α_k P_k,  ∫ T g = ∫ g − Σ_k α_k P_k ∫_{behind k} g.
+// The loop has a constant trip count and no break, so it unrolls and costs no loop budget.
+void tyn_walk_add_translucent_part(inout vec3 sum, uint map, ivec2 texel, TynShadowRay r, bool directional,
+                                   TynLocalLightRay local_ray, vec3 origin, vec3 dir, float a, float b) {
+  vec3 part = tyn_walk_piece(directional, local_ray, origin, dir, a, b);
+  float kept = 1.0;  // P_k
+  bool more = true;
+  [[unroll]] for (uint k = 0u; k <= TYN_MAX_TRANSLUCENT_LAYERS; ++k) {
+    if (more && k <= frame.translucent_layer_count) {
+      vec2 layer = tyn_translucent_layer(map, texel, k);
+      more = layer.x < 1.0;
+      vec2 behind = more ? tyn_texel_behind_part(r, layer.x, a, b) : vec2(0.0);
+      if (behind.y > behind.x) {
+        if (k == frame.translucent_layer_count) {
+          tyn_translucent_overflowed = true;
+        } else {
+          part -= (layer.y * kept) * tyn_walk_piece(directional, local_ray, origin, dir, behind.x, behind.y);
+        }
+      }
+      kept *= 1.0 - layer.y;
+    }
+  }
+  sum += max(part, vec3(0.0));  // rounding only: the exact value is ≥ 0
+}
+#endif
+
 // Closes a walk's last lit section (tyn_walk_add_lit_part).
 void tyn_walk_close_section(inout vec3 sum, vec2 section, bool sections, vec3 origin, vec3 dir) {
 #ifdef TYN_WALK_LIT_SECTIONS
@@ -195,6 +244,11 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
 
     if (t_next > t) {
       vec2 lit = tyn_texel_lit_part(r, tyn_shadow_texel(map, texel), t, t_next);
+#ifdef TYN_WALK_TRANSLUCENT
+      if (lit.y > lit.x && frame.translucent_layer_count != 0u) {
+        tyn_walk_add_translucent_part(sum, map, texel, r, directional, local_ray, origin, dir, lit.x, lit.y);
+      } else
+#endif
       if (lit.y > lit.x) tyn_walk_add_lit_part(sum, section, directional, sections, local_ray, origin, dir, lit.x, lit.y);
     }
     t = t_next;

@@ -1,7 +1,9 @@
 #version 460
-// Reference technique: per-pixel brute force (common/texel_walk.glsl, without hooks). Writes L_in for the
-// composite pass, which computes the view ray's transmittance itself.
+// Reference technique: per-pixel brute force (common/texel_walk.glsl; its only hook the translucent
+// layers, integrated exactly). Writes L_in for the composite pass, which computes the view ray's
+// transmittance itself.
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 
 #include "common/shared_constants.h"
 
@@ -12,8 +14,14 @@ layout(set = 0, binding = TYN_BINDING_DEPTH) uniform sampler2D depth_buffer;
 layout(set = 0, binding = TYN_BINDING_SHADOW_MAPS) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 layout(set = 0, binding = TYN_REFERENCE_BINDING_OUT_SCATTERING, rgba32f) uniform writeonly image2D out_scattering;
 layout(set = 0, binding = TYN_REFERENCE_BINDING_LIGHT_COLOR) uniform sampler2D light_color;
+layout(set = 0, binding = TYN_REFERENCE_BINDING_TRANSLUCENT_LAYERS) uniform sampler2DArray translucent_layers[TYN_MAX_SHADOW_MAPS];
+layout(set = 0, binding = TYN_REFERENCE_BINDING_TRANSLUCENT_OVERFLOW, std430) buffer TranslucentOverflow {
+  uint translucent_overflow;
+};
 
+#define TYN_WALK_TRANSLUCENT
 #include "common/view_ray.glsl"
+#include "common/translucent_layers.glsl"
 #include "common/texel_walk.glsl"
 
 void main() {
@@ -24,4 +32,5 @@ void main() {
   TynViewRay ray = tyn_view_ray(pixel, depth);
   vec3 in_scattering = tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance);
   imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  if (tyn_translucent_overflowed) atomicOr(translucent_overflow, 1u);
 }

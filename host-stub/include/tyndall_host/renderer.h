@@ -72,7 +72,13 @@ struct RenderSettings {
   /// Give the back buffer STORAGE usage when its format supports storage images (what engines do
   /// for compute post-processes); false never adds it, so effects take their fragment path.
   bool storageBackBuffer = true;
+  /// Depth-peeled layers per shadow map of a scene with translucent objects (Object::opacity < 1),
+  /// 1..kMaxTranslucentLayers; a texel with more surfaces is flagged by the overflow layer.
+  std::uint32_t translucentLayers = 4;
 };
+
+/// The most translucent layers RenderSettings::translucentLayers takes (tyndall::kMaxTranslucentLayers).
+inline constexpr std::uint32_t kMaxTranslucentLayers = 8;
 
 /// An image of the host as a post-process sees it (mirrors tyndall::ImageRef).
 struct HostImage {
@@ -101,6 +107,12 @@ struct HostShadowMap {
   /// map, spot and point lights.
   float viewDepthNear = 0.0f;
   float viewDepthFar = 0.0f;
+  /// With translucent objects in the scene: their surfaces in front of `depth`, depth-peeled
+  /// nearest the light first into translucentLayerCount layers of an R32G32_SFLOAT array, (depth,
+  /// opacity) per texel, (1, 0) where there are fewer, then the overflow layer (the next peel);
+  /// SHADER_READ_ONLY_OPTIMAL, `view` a 2D_ARRAY view of all of them. Empty, count 0, without.
+  HostImage translucentLayers;
+  std::uint32_t translucentLayerCount = 0;
 };
 
 /// A light after the scene's first (Scene::additionalLights), as effects see it.

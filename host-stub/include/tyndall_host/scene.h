@@ -68,6 +68,11 @@ struct Object {
   glm::dvec3 translation{0.0};      ///< gltf
   double scale = 1.0;               ///< gltf
   glm::dvec3 albedo{0.6};           ///< optional "albedo": [r,g,b] (an extension of the format), linear
+  /// Optional "opacity" α in (0, 1]: below 1 a translucent occluder, which multiplies the light
+  /// crossing each of its surfaces by 1 − α. It shadows the light only: it is not in the depth
+  /// buffer, so view rays pass it unattenuated (an engine draws it after its deferred passes).
+  double opacity = 1.0;
+  [[nodiscard]] bool translucent() const { return opacity < 1.0; }
 };
 
 /// Lights a scene holds at most ("lights": [LIGHT, …]); tyndall::kMaxLights, which the stub host

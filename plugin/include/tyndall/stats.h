@@ -104,6 +104,7 @@ enum class TechniqueChange : std::uint32_t {
   PrefilteredNeedsDirectionalLight,  ///< prefiltered asked for a spot or point light: epipolar ran
   PrefilteredHasNoLightColor,        ///< prefiltered asked with a light-colour texture: epipolar ran
   PrefilteredNeedsOneShadowMap,      ///< prefiltered asked for a light with cascades: epipolar ran
+  TranslucentNeedsReference,         ///< epipolar or prefiltered asked with translucent layers: the Reference ran
   EpipolarNeeds2x2,                  ///< epipolar asked for an output under 2×2: the Reference ran
 };
 const char* to_string(TechniqueChange change) noexcept;
@@ -132,6 +133,8 @@ struct LightStats {
   LightSkipped skipped = LightSkipped::No;
   std::optional<EpipolarStats> epipolar;
   std::optional<PrefilteredStats> prefiltered;
+  /// Translucent layers per shadow map the light's technique integrated (ShadowMapDesc); 0: none.
+  std::uint32_t translucentLayers = 0;
 };
 
 struct Stats {
@@ -154,6 +157,10 @@ struct Stats {
   /// texel walk can exceed that and come out too dark: a point light's over maps above 4096², a
   /// directional light's over cascades whose sides add up to 32,768 texels or more (four of 8192²).
   bool walkOverCpuLoopLimit = false;
+  /// Read back from the frame of `lastTimings`: a view ray of the Reference crossed a shadow-map texel
+  /// with more translucent surfaces than ShadowMapDesc::translucentLayerCount (the overflow layer
+  /// held one); the surfaces past the count were left out, so L_in there is too bright.
+  bool translucentLayersOverflowed = false;
   bool debugViewDrawn = false;                  ///< false: debugOutput got the dimmed L_in alone
   std::string techniqueNote;                    ///< the above in one line for people; not for parsing
   std::vector<std::string> passesRecorded;      ///< the last `record`'s passes, in order

@@ -198,6 +198,7 @@ inline constexpr std::uint32_t kMaxMediumComponents = 4;
 inline constexpr std::uint32_t kMaxShadowMaps = 6;  ///< a point light's six frusta
 inline constexpr std::uint32_t kMaxCascades = 4;    ///< a directional light's cascaded shadow maps
 inline constexpr std::uint32_t kMaxLights = 8;      ///< FrameDesc::light and up to 7 additional lights
+inline constexpr std::uint32_t kMaxTranslucentLayers = 8;  ///< ShadowMapDesc::translucentLayerCount
 
 struct ShadowMapDesc {
   /// Square depth image: D16_UNORM, D32_SFLOAT, X8_D24_UNORM_PACK32, D24_UNORM_S8_UINT or
@@ -213,6 +214,15 @@ struct ShadowMapDesc {
   /// farther. Ignored with one map and for spot and point lights (docs/INTEGRATION.md "Cascades").
   float viewDepthNear = 0.0f;
   float viewDepthFar = 0.0f;
+  /// Optional translucent occluders (opacity α < 1), exact, for the Reference technique
+  /// (docs/INTEGRATION.md "Translucent occluders"): the surfaces in front of `depth`, depth-peeled
+  /// nearest the light first, one per array layer of an R32G32_SFLOAT image of the map's size holding
+  /// (depth, α) per texel, (1, 0) where the texel has no more. `view` is a 2D_ARRAY view of the
+  /// translucentLayerCount layers from `arrayLayer` and one more after them, the overflow layer: the
+  /// next peel, whose depth is below 1 where a texel has more surfaces than the count. The light
+  /// crossing a surface keeps 1 − α of itself. Usage SAMPLED. Every map of a light has them or none.
+  ImageRef translucentLayers;
+  std::uint32_t translucentLayerCount = 0;  ///< 1..kMaxTranslucentLayers with translucentLayers, else 0
 };
 
 /// A light after the frame's first (FrameDesc::additionalLights): the same three inputs the first

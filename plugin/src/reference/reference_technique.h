@@ -23,6 +23,8 @@ class ReferenceTechnique final : public ScatteringTechnique {
   /// Updates the slot's descriptors and dispatches one thread per pixel.
   void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
   [[nodiscard]] const char* singlePassName() const override { return "reference_scattering"; }
+  /// Stats::translucentLayersOverflowed from the slot's previous frame with translucent layers.
+  void readBackFlags(std::uint32_t slot, Stats& stats) override;
   void destroy(const Gpu& gpu) override;
 
  private:
@@ -34,6 +36,8 @@ class ReferenceTechnique final : public ScatteringTechnique {
   LightPipelines pipelines_{};  // per light type
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::vector<VkDescriptorSet> sets_;
+  std::vector<MappedBuffer> overflow_;   // per slot: one uint the shader sets, read a lap later
+  std::vector<bool> overflowRecorded_;   // per slot: its last frame had translucent layers
 };
 
 }  // namespace tyndall

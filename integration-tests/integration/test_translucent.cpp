@@ -1,0 +1,147 @@
+// Translucent occluders (Object::opacity < 1) from depth-peeled layers
+// (ShadowMapDesc::translucentLayers): the Reference against the CPU analytic reference on
+// samples/scenes/analytic-glass.json (stacked glass panes, a smoke ball, a glass box), the limits
+// α → 1 (the opaque object's shadow) and α → 0 (no object), the overflow flag, and the visible
+// fallback of the other techniques.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "test_support.h"
+
+namespace tyndall::test {
+namespace {
+
+constexpr std::uint32_t kWidth = 192;
+constexpr std::uint32_t kHeight = 108;
+// analytic-glass.json's smoke ball.
+constexpr std::size_t kSmokeBall = 7;
+
+samples::RenderOptions translucentOptions(std::uint32_t width, std::uint32_t height, std::uint32_t mapSize) {
+  samples::RenderOptions options;
+  options.profile = Profile::Reference;
+  options.width = width;
+  options.height = height;
+  options.shadowMapSize = mapSize;
+  return options;
+}
+
+// The bar for the Reference: relative RMSE of L_in ≤ 2% against the exact answer, which
+// multiplies the light by (1 − α) at every translucent surface it crosses.
+TEST(Translucent, ReferenceMatchesTheAnalyticAnswer) {
+  const host::Scene scene = loadTestScene("analytic-glass");
+  // Six layers hold every surface of this scene (TooFewLayersRaiseTheOverflowFlag).
+  samples::RenderOptions options = translucentOptions(kWidth, kHeight, 2048);
+  options.translucentLayers = 6;
+  const samples::RenderResult result = renderWithSharedContext(scene, options);
+  EXPECT_EQ(result.stats.technique, Technique::Reference);
+  ASSERT_EQ(result.stats.lights.size(), 1u);
+  EXPECT_EQ(result.stats.lights[0].translucentLayers, 6u);
+
+  analytic::RgbImage exact;
+  analytic::RgbImage transmittance;
+  std::string error;
+  ASSERT_TRUE(analytic::renderAnalytic(scene, kWidth, kHeight, exact, transmittance, error)) << error;
+  // Without the translucent objects' shadows the answer is far off: the test can fail.
+  host::Scene opaqueOnly = scene;
+  opaqueOnly.objects.resize(5);
+  analytic::RgbImage clear;
+  ASSERT_TRUE(analytic::renderAnalytic(opaqueOnly, kWidth, kHeight, clear, transmittance, error)) << error;
+
+  const ErrorStats e = compareRgb(result.scattering, exact.rgb);
+  host::ImageRgba32f clearImage{kWidth, kHeight, {}};
+  for (std::size_t i = 0; i < clear.rgb.size() / 3; ++i) {
+    clearImage.pixels.insert(clearImage.pixels.end(),
+                             {float(clear.rgb[3 * i]), float(clear.rgb[3 * i + 1]), float(clear.rgb[3 * i + 2]), 0.0f});
+  }
+  const ErrorStats withoutTranslucent = compareRgb(clearImage, exact.rgb);
+  std::printf("[ glass ] Reference: %s\n[ glass ] the answer without translucent shadows: %s\n", describe(e).c_str(),
+              describe(withoutTranslucent).c_str());
+  EXPECT_EQ(e.nonFinite, 0u);
+  EXPECT_LE(e.relativeRmse, 0.02) << describe(e);
+  // Leaving the translucent shadows out misses the bar: the test can fail.
+  EXPECT_GT(withoutTranslucent.relativeRmse, 0.02) << "the translucent shadows must matter in this scene";
+  expectNoValidationMessages();
+}
+
+// A mask of the pixels whose view ray misses the translucent object: where the depth buffer, and
+// with it T, is the same with and without the object in it.
+std::vector<unsigned char> sameDepth(const host::ImageRgba32f& a, const host::ImageRgba32f& b) {
+  std::vector<unsigned char> mask(a.pixels.size() / 4, 0);
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = a.pixels[4 * i] == b.pixels[4 * i] ? 1 : 0;
+  return mask;
+}
+
+// α → 1: the light crossing the ball keeps (1 − α)² = 10⁻⁸, so the shadow is the opaque ball's,
+// on the pixels whose view ray misses the ball (an opaque ball is in the depth buffer, a
+// translucent one is not).
+TEST(Translucent, NearlyOpaqueCastsTheOpaqueShadow) {
+  host::Scene translucent = loadTestScene("analytic-glass");
+  translucent.objects[kSmokeBall].opacity = 0.9999;
+  host::Scene opaque = translucent;
+  opaque.objects[kSmokeBall].opacity = 1.0;
+  const samples::RenderOptions options = translucentOptions(96, 54, 1024);
+  const samples::RenderResult a = renderWithSharedContext(translucent, options);
+  const samples::RenderResult b = renderWithSharedContext(opaque, options);
+  const std::vector<unsigned char> mask = sameDepth(a.transmittance, b.transmittance);
+  std::size_t kept = 0;
+  for (unsigned char m : mask) kept += m;
+  ASSERT_GT(kept, mask.size() / 2);
+  ASSERT_LT(kept, mask.size()) << "the ball must be in view";
+  const ErrorStats e = compareRgb(a.scattering, b.scattering, &mask);
+  std::printf("[ alpha -> 1 ] %s\n", describe(e).c_str());
+  EXPECT_LE(e.relativeRmse, 1e-4) << describe(e);
+  expectNoValidationMessages();
+}
+
+// α → 0: the light keeps (1 − α)² ≈ 1 − 2·10⁻⁴; nothing is in the depth buffer either way.
+TEST(Translucent, NearlyClearEqualsNoObject) {
+  host::Scene faint = loadTestScene("analytic-glass");
+  faint.objects[kSmokeBall].opacity = 1e-4;
+  host::Scene without = faint;
+  without.objects.erase(without.objects.begin() + kSmokeBall);
+  const samples::RenderOptions options = translucentOptions(96, 54, 1024);
+  const samples::RenderResult a = renderWithSharedContext(faint, options);
+  const samples::RenderResult b = renderWithSharedContext(without, options);
+  const ErrorStats e = compareRgb(a.scattering, b.scattering);
+  std::printf("[ alpha -> 0 ] %s\n", describe(e).c_str());
+  EXPECT_LE(e.relativeRmse, 5e-4) << describe(e);
+  expectNoValidationMessages();
+}
+
+// Under both roof panes a light ray crosses four surfaces, and some cross more (the flag is up
+// with 4 and 5 layers too): one layer overflows, six do not. The flag is read back from an
+// earlier frame, so three frames are rendered (two in flight).
+TEST(Translucent, TooFewLayersRaiseTheOverflowFlag) {
+  const host::Scene scene = loadTestScene("analytic-glass");
+  samples::RenderOptions options = translucentOptions(64, 36, 512);
+  options.frames = 3;
+  options.translucentLayers = 1;
+  const samples::RenderResult one = renderWithSharedContext(scene, options);
+  options.translucentLayers = 6;
+  const samples::RenderResult six = renderWithSharedContext(scene, options);
+  EXPECT_EQ(one.stats.lights[0].translucentLayers, 1u);
+  EXPECT_TRUE(one.stats.translucentLayersOverflowed);
+  EXPECT_FALSE(six.stats.translucentLayersOverflowed);
+  expectNoValidationMessages();
+}
+
+// The epipolar and prefiltered techniques do not read the layers yet: a profile that picks them
+// runs the Reference, and says so.
+TEST(Translucent, OtherTechniquesHandOverToTheReference) {
+  const host::Scene scene = loadTestScene("analytic-glass");
+  for (Profile profile : {Profile::High, Profile::Performance}) {
+    samples::RenderOptions options = translucentOptions(64, 36, 512);
+    options.profile = profile;
+    const samples::RenderResult result = renderWithSharedContext(scene, options);
+    EXPECT_EQ(result.stats.technique, Technique::Reference) << to_string(profile);
+    EXPECT_EQ(result.stats.techniqueChange, TechniqueChange::TranslucentNeedsReference) << to_string(profile);
+    EXPECT_NE(result.stats.techniqueNote.find("translucent"), std::string::npos) << result.stats.techniqueNote;
+  }
+  expectNoValidationMessages();
+}
+
+}  // namespace
+}  // namespace tyndall::test

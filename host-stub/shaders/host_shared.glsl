@@ -31,6 +31,16 @@ struct PeelPush {
   ivec4 layer;
 };
 
+// Push constants of the forward pass of translucent objects: `light` xyz is the direction a
+// directional light travels (w = 0) or a spot or point light's position (w = 1); `radiance` its
+// E or I; `ambient` the ambient irradiance.
+struct ForwardPush {
+  mat4 clipFromWorld;
+  vec4 light;
+  vec4 radiance;
+  vec4 ambient;
+};
+
 // Uniform block of the lighting pass (set 0, binding 0).
 struct LightingParams {
   mat4 worldToShadowClip[6];  // point lights: faces +X, −X, +Y, −Y, +Z, −Z

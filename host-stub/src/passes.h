@@ -158,6 +158,21 @@ class TranslucentPass {
   vk::UniquePipeline pipeline_;
 };
 
+/// The translucent objects forward-shaded and blended over the lit back buffer with their opacity,
+/// depth-tested against the G-buffer's depth (not written: they stay out of the depth buffer, as
+/// an engine's forward transparency does). Unsorted: overlapping translucent objects blend in draw order.
+class ForwardPass {
+ public:
+  bool create(const vk::GpuContext& gpu, VkFormat colorFormat, VkCompareOp depthCompare, std::string& error);
+  /// `target` in COLOR_ATTACHMENT_OPTIMAL, `depth` in DEPTH_STENCIL_ATTACHMENT_OPTIMAL (read only).
+  void record(VkCommandBuffer cmd, const SceneGeometry& geometry, const vk::Image& target, const vk::Image& depth,
+              const gpu::ForwardPush& push) const;
+
+ private:
+  vk::UniquePipelineLayout layout_;
+  vk::UniquePipeline pipeline_;
+};
+
 /// G-buffer: depth, albedo, normal.
 class GBufferPass {
  public:

@@ -182,6 +182,7 @@ struct Renderer::Impl {
   detail::GBufferPass gbufferPass;
   detail::LightingPass lightingPass;
   detail::TranslucentPass translucentPass;
+  detail::ForwardPass forwardPass;
   std::uint32_t peelSetCount = 0;  // descriptor sets the translucent pass holds
   std::uint32_t nextPeelSet = 0;   // the next one createSlot hands out
   CameraSetup camera;
@@ -339,7 +340,10 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
     }
     peelSetCount *= settings.framesInFlight;
   }
-  if (!translucentPass.create(gpu, peelSetCount, error)) return false;
+  if (!translucentPass.create(gpu, peelSetCount, error) ||
+      !forwardPass.create(gpu, settings.backBufferFormat, camera.depthCompare, error)) {
+    return false;
+  }
   if (!shadowPass.create(gpu, error) || !gbufferPass.create(gpu, camera.depthCompare, error) ||
       !lightingPass.create(gpu, settings.backBufferFormat, settings.framesInFlight,
                            static_cast<std::uint32_t>(lights.size()), error)) {
@@ -619,6 +623,21 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
       .image(slot.depth.image(), kDepthAspect, kReadLayout, kDepthLayout,
              {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE}, depthAttachment)
       .record(cmd);
+
+  // Translucent objects, as an engine draws them after its deferred passes: blended over the lit
+  // picture, tested against the depth buffer and left out of it.
+  if (geometry.translucentIndexCount > 0) {
+    barriers.image(slot.color.image(), kColorAspect, kColorLayout, kColorLayout, colorWritten, colorAttachment)
+        .record(cmd);
+    const Light& light = *lights[0].light;
+    gpu::ForwardPush push{};
+    push.clipFromWorld = glm::mat4(camera.projection * camera.view);
+    push.light = light.type == LightType::Directional ? glm::vec4(glm::vec3(glm::normalize(light.direction)), 0.0f)
+                                                      : glm::vec4(glm::vec3(light.position), 1.0f);
+    push.radiance = glm::vec4(glm::vec3(light.color * light.intensity), 0.0f);
+    push.ambient = glm::vec4(kAmbient, 0.0f);
+    forwardPass.record(cmd, geometry, slot.color, slot.depth, push);
+  }
 }
 
 // The translucent objects peeled from every shadow map, after the shadow passes: the maps are read

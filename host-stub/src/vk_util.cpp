@@ -323,7 +323,7 @@ bool createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc, U
   VkPipelineDepthStencilStateCreateInfo depthStencil{
       VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
   depthStencil.depthTestEnable = hasDepth ? VK_TRUE : VK_FALSE;
-  depthStencil.depthWriteEnable = hasDepth ? VK_TRUE : VK_FALSE;
+  depthStencil.depthWriteEnable = hasDepth && desc.depthWrite ? VK_TRUE : VK_FALSE;
   depthStencil.depthCompareOp = desc.depthCompare;
 
   std::vector<VkPipelineColorBlendAttachmentState> blendAttachments(desc.colorFormats.size());
@@ -334,6 +334,15 @@ bool createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc, U
       attachment.blendEnable = VK_TRUE;
       attachment.srcColorBlendFactor = VK_BLEND_FACTOR_ONE;
       attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+      attachment.colorBlendOp = VK_BLEND_OP_ADD;
+      attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+      attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+      attachment.alphaBlendOp = VK_BLEND_OP_ADD;
+    }
+    if (desc.alphaBlend) {
+      attachment.blendEnable = VK_TRUE;
+      attachment.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
+      attachment.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
       attachment.colorBlendOp = VK_BLEND_OP_ADD;
       attachment.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
       attachment.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;

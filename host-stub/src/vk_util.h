@@ -181,6 +181,8 @@ struct GraphicsPipelineDesc {
   VkCompareOp depthCompare = VK_COMPARE_OP_LESS;
   bool depthClamp = false;
   bool additiveBlend = false;  // colour attachments: rgb += fragment rgb, alpha kept
+  bool alphaBlend = false;     // colour attachments: rgb = src rgb · src a + dst rgb · (1 − src a), alpha kept
+  bool depthWrite = true;      // with a depthFormat: write depth (else test only)
 };
 
 bool createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc, UniquePipeline& out,

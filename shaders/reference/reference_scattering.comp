@@ -3,7 +3,6 @@
 // layers, integrated exactly). Writes L_in for the composite pass, which computes the view ray's
 // transmittance itself.
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_control_flow_attributes : require
 
 #include "common/shared_constants.h"
 

@@ -2,7 +2,7 @@
 # scripts/bundle-binaries.sh and scripts/measure-gpu.sh end to end at a tiny size: the bundle loads
 # every library but the C runtime from itself (bundle-binaries.sh fails otherwise), its programs
 # run from it, and measure-gpu.sh gathers a table row per run (the cost part's two runs too) and
-# names the device; scripts/measure.sh's reference and memory parts print a row per run, and an
+# names the device; scripts/measure.sh's reference, translucent and memory parts print a row per run, and an
 # unknown part is refused with the usage text.
 # Usage: check_measure_scripts.sh BUILD_DIR WORK_DIR (absolute paths)
 set -euo pipefail
@@ -41,6 +41,10 @@ table="$(LD_LIBRARY_PATH="$work/bundle/lib" MEMORY_OUT="$work/memory" SCENES=pil
   PROFILES=performance SHADOW_MAP=256 \
   "$repo/scripts/measure.sh" memory "$work/bundle")"
 grep -q '^| pillars | performance | epipolar | [0-9.]* |$' <<<"$table" || fail "no memory row: $table"
+table="$(LD_LIBRARY_PATH="$work/bundle/lib" TRANSLUCENT_OUT="$work/translucent" SIZE=32x18 SHADOW_MAP=256 LAYERS=1 \
+  FRAMES=2 "$repo/scripts/measure.sh" translucent "$work/bundle")"
+grep -q '^| analytic-glass | 32x18 | 256 | 0 (opaque) | [0-9.]* | 1.00x |$' <<<"$table" || fail "no opaque row: $table"
+grep -q '^| analytic-glass | 32x18 | 256 | 1 | [0-9.]* | [0-9.]*x |$' <<<"$table" || fail "no translucent row: $table"
 status=0
 "$repo/scripts/measure.sh" no-such-part >/dev/null 2>"$work/usage.txt" || status=$?
 [ "$status" -eq 2 ] && grep -q '^usage: scripts/measure.sh PART' "$work/usage.txt" &&

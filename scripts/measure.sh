@@ -64,6 +64,11 @@ spot         The profiles against the Reference on the spot-light scenes and on 
              are used instead of rendering them again).
 reference    The Reference's GPU time per pass and wall-clock time per frame. Prints a table; writes
              REFERENCE_OUT (out/measure). SCENES (pillars), SIZES (640x360 1280x720), FRAMES (4).
+translucent  The Reference's cost with translucent layers: per scene, its scattering pass with each
+             layer count against the same scene with its translucent objects made opaque (same
+             geometry, no layers), in one run. Prints a table; writes TRANSLUCENT_OUT
+             (out/measure-translucent). SCENES (analytic-glass; scene files without glTF objects),
+             LAYERS (1 4 8), SIZE (320x180), SHADOW_MAP (2048), FRAMES (3).
 memory       Device memory a context holds per profile and size (Stats::deviceMemoryBytes after one
              frame). Prints a table; writes MEMORY_OUT (out/memory-footprint). SCENES (pillars
              spot-lamp), SIZES (1280x720 1920x1080 3840x2160), PROFILES (reference high balanced
@@ -334,6 +339,40 @@ part_reference() {
   done
 }
 
+# translucent: the Reference with translucent layers against the same scene made opaque.
+part_translucent() {
+  local render out size map frames entry file name opaque layers json
+  render="$(program "$1" tyndall-render)"
+  out="${TRANSLUCENT_OUT:-out/measure-translucent}"
+  size="${SIZE:-320x180}"
+  map="${SHADOW_MAP:-2048}"
+  frames="${FRAMES:-3}"
+  mkdir -p "$out"
+  run() {  # scene file, timings file, extra arguments
+    "$render" --pipelines on-first-use "$1" --profile reference --width "$(width_of "$size")" \
+      --height "$(height_of "$size")" --shadow-map-size "$map" --frames "$frames" --timings "$2" "${@:3}" >/dev/null
+  }
+  printf '| scene | size | map | translucent layers | reference_scattering ms | against opaque |\n|---|---|---|---|---|---|\n'
+  for entry in ${SCENES:-analytic-glass}; do
+    file="$(scene_file "$entry")"
+    name="$(scene_name "$file")"
+    opaque="$out/$name-opaque.json"
+    python3 -c 'import json, sys
+scene = json.load(open(sys.argv[1]))
+for o in scene["objects"]: o.pop("opacity", None)
+json.dump(scene, open(sys.argv[2], "w"))' "$file" "$opaque"
+    run "$opaque" "$out/$name-opaque-timings.json"
+    python3 scripts/lib/measure_tables.py translucent-row "$out/$name-opaque-timings.json" \
+      "$out/$name-opaque-timings.json" "$name" "$size" "$map" "0 (opaque)"
+    for layers in ${LAYERS:-1 4 8}; do
+      json="$out/$name-$layers.json"
+      run "$file" "$json" --translucent-layers "$layers"
+      python3 scripts/lib/measure_tables.py translucent-row "$json" "$out/$name-opaque-timings.json" "$name" \
+        "$size" "$map" "$layers"
+    done
+  done
+}
+
 # memory: one frame per profile, scene and size in a fresh context.
 part_memory() {
   local render out map sizes size scene profile cells run technique mib resolution label name reduced
@@ -383,7 +422,7 @@ part_extremes() {
 
 part="${1:-}"
 case "$part" in
-  tradeoffs | prefiltered | cost | epipolar | spot | reference | memory) "part_$part" "${2:-build}" ;;
+  tradeoffs | prefiltered | cost | epipolar | spot | reference | translucent | memory) "part_$part" "${2:-build}" ;;
   extremes) part_extremes "${2:-build-tests}" ;;
   -h | --help) usage ;;
   *) usage >&2; [ -z "$part" ] || echo "unknown part: $part" >&2; exit 2 ;;

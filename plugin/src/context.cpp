@@ -538,7 +538,8 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
                      (selections[i].technique == Technique::Reference || selections[i].technique == Technique::Epipolar) &&
                      !light.shadowMaps.empty() &&
                      walkCanOverrunCpuLoopBudget(light.light.type, light.shadowMaps.size(),
-                                                 light.shadowMaps[0].depth.extent.width));
+                                                 light.shadowMaps[0].depth.extent.width,
+                                                 light.shadowMaps[0].translucentLayerCount > 0));
   }
   if (overLoopLimit) {
     note += "; CPU driver: a light's texel walk over its maps (their size and count) can exceed lavapipe's 65,535 "

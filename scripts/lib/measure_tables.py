@@ -7,6 +7,7 @@ tyndall-compare's error JSON: one subcommand per kind of row (measure.sh's parts
                                                                     K: --cascades of the renders, 0 the scene's)
   epipolar-tables ROWS_JSONL
   reference-row TIMINGS SCENE SIZE
+  translucent-row TIMINGS OPAQUE_TIMINGS SCENE SIZE MAP LAYERS        (the Reference's pass against the opaque scene's)
   memory-cell TIMINGS                                               ("technique MiB")
   spread EVALUATIONS_TSV [--prefix P] [--exclude-prefix P] [--title T]
   bound DEFAULTS_TSV ONE_LOOKUP_TSV                                 (evaluate time over one lookup's per scene)
@@ -110,6 +111,13 @@ def reference_row(a):
     p = t["passMilliseconds"]
     print(f"| {a.scene} | {a.size} | 2048 | {p.get('reference_scattering', 0):.1f} | "
           f"{p.get('composite', 0):.2f} | {t['totalMilliseconds']:.1f} | {t['wallMillisecondsPerFrame']:.1f} |")
+
+
+def translucent_row(a):
+    t = load(a.timings)["passMilliseconds"].get("reference_scattering", 0)
+    opaque = load(a.opaque)["passMilliseconds"].get("reference_scattering", 0)
+    ratio = f"{t / opaque:.2f}x" if opaque > 0 else "-"
+    print(f"| {a.scene} | {a.size} | {a.map} | {a.layers} | {ms(t)} | {ratio} |")
 
 
 def memory_cell(a):
@@ -270,6 +278,10 @@ def main():
     for name in ("timings", "scene", "size"):
         p.add_argument(name)
     p.set_defaults(run=reference_row)
+    p = sub.add_parser("translucent-row")
+    for name in ("timings", "opaque", "scene", "size", "map", "layers"):
+        p.add_argument(name)
+    p.set_defaults(run=translucent_row)
     p = sub.add_parser("memory-cell")
     p.add_argument("timings")
     p.set_defaults(run=memory_cell)

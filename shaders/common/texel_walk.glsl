@@ -236,9 +236,11 @@ vec3 tyn_walk_shadow_blocks(uint map, vec3 origin, vec3 dir, float t0, float t1,
 bool tyn_shadow_blocks_built();
 #endif
 
-// Walks [t0, t1] (already inside the map) texel by texel. A directional light returns
-// Σ_lit ∫ e^{−σ_t t} dt; a spot or point light returns the in-scattered radiance of the lit parts.
-vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional) {
+// The walk's loop. `translucent` is a constant at each call site, so the compiler builds two
+// loops: the one without translucent layers holds none of their code, which lavapipe would
+// otherwise run (masked) at every step and count against its loop budget.
+vec3 tyn_walk_shadow_map_loop(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional,
+                              const bool translucent) {
   bool sections = tyn_walk_merges_sections(directional);
   vec2 section = vec2(t0);  // the lit section being merged (tyn_walk_add_lit_part)
   TynShadowRay r = tyn_shadow_ray(map, origin, dir);
@@ -262,18 +264,31 @@ vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bo
 
     if (t_next > t) {
       vec2 lit = tyn_texel_lit_part(r, tyn_shadow_texel(map, texel), t, t_next);
+      if (lit.y > lit.x) {
 #ifdef TYN_WALK_TRANSLUCENT
-      if (lit.y > lit.x && frame.translucent_layer_count != 0u) {
-        tyn_walk_add_translucent_part(sum, map, texel, r, directional, local_ray, origin, dir, lit.x, lit.y);
-      } else
+        if (translucent) {
+          tyn_walk_add_translucent_part(sum, map, texel, r, directional, local_ray, origin, dir, lit.x, lit.y);
+        } else
 #endif
-      if (lit.y > lit.x) tyn_walk_add_lit_part(sum, section, directional, sections, local_ray, origin, dir, lit.x, lit.y);
+        {
+          tyn_walk_add_lit_part(sum, section, directional, sections, local_ray, origin, dir, lit.x, lit.y);
+        }
+      }
     }
     t = t_next;
     if (!tyn_next_texel(texel, step_dir, crossing, size)) break;
   }
   tyn_walk_close_section(sum, section, sections, origin, dir);
   return sum;
+}
+
+// Walks [t0, t1] (already inside the map) texel by texel. A directional light returns
+// Σ_lit ∫ e^{−σ_t t} dt; a spot or point light returns the in-scattered radiance of the lit parts.
+vec3 tyn_walk_shadow_map(uint map, vec3 origin, vec3 dir, float t0, float t1, bool directional) {
+#ifdef TYN_WALK_TRANSLUCENT
+  if (frame.translucent_layer_count != 0u) return tyn_walk_shadow_map_loop(map, origin, dir, t0, t1, directional, true);
+#endif
+  return tyn_walk_shadow_map_loop(map, origin, dir, t0, t1, directional, false);
 }
 
 // Ends of part `part` of `parts` equal lengths of [t0, t1]; the first part begins exactly at t0 and

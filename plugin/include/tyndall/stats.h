@@ -154,8 +154,9 @@ struct Stats {
   std::optional<PrefilteredStats> prefiltered;  ///< when the prefiltered technique ran this frame
   std::optional<EpipolarCounts> epipolarCounts; ///< once an epipolar frame's counts were read back
   /// A CPU driver (lavapipe) ends a shader invocation's loops after 65,535 iterations; a light's
-  /// texel walk can exceed that and come out too dark: a point light's over maps above 4096², a
-  /// directional light's over cascades whose sides add up to 32,768 texels or more (four of 8192²).
+  /// texel walk can exceed that and come out wrong: a point light's over maps above 4096², a
+  /// directional light's over cascades whose sides add up to 32,768 texels or more (four of 8192²);
+  /// with translucent layers, a spot light's over maps above 2978² and a point light's above 744².
   bool walkOverCpuLoopLimit = false;
   /// Read back from the frame of `lastTimings`: a view ray of the Reference crossed a shadow-map texel
   /// with more translucent surfaces than ShadowMapDesc::translucentLayerCount (the overflow layer

@@ -102,13 +102,16 @@ TEST(TechniqueSelection, WalksThatCanOverrunTheCpuLoopBudget) {
   EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Directional, 2, 16384));
   EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 8192));
   EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 16384));
-  // Translucent layers: eleven iterations a step for a spot or point light, one for a directional.
-  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 2048, true));
-  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 4096, true));
-  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Point, 6, 512, true));
-  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Point, 6, 1024, true));
-  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Directional, 4, 4096, true));
-  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Directional, 4, 8192, true));
+  // Four translucent layers (five read): a spot or point light's step costs 12 iterations, a
+  // directional light's 6.
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 2048, 4));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Spot, 1, 4096, 4));
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Point, 6, 512, 4));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Point, 6, 1024, 4));
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Directional, 1, 4096, 4));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Directional, 1, 8192, 4));
+  EXPECT_FALSE(walkCanOverrunCpuLoopBudget(LightType::Directional, 4, 1024, 4));
+  EXPECT_TRUE(walkCanOverrunCpuLoopBudget(LightType::Directional, 4, 2048, 4));
 }
 
 }  // namespace

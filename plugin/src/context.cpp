@@ -539,7 +539,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
                      !light.shadowMaps.empty() &&
                      walkCanOverrunCpuLoopBudget(light.light.type, light.shadowMaps.size(),
                                                  light.shadowMaps[0].depth.extent.width,
-                                                 light.shadowMaps[0].translucentLayerCount > 0));
+                                                 light.shadowMaps[0].translucentLayerCount));
   }
   if (overLoopLimit) {
     note += "; CPU driver: a light's texel walk over its maps (their size and count) can exceed lavapipe's 65,535 "

@@ -28,18 +28,20 @@ TechniqueSelection selectTechnique(const TechniqueRequest& request) {
   return s;
 }
 
-bool walkCanOverrunCpuLoopBudget(LightType light, std::size_t mapCount, std::uint32_t mapSize, bool translucentLayers) {
+bool walkCanOverrunCpuLoopBudget(LightType light, std::size_t mapCount, std::uint32_t mapSize,
+                                 std::uint32_t translucentLayers) {
   constexpr std::uint64_t kLoopBudget = 65535;
   // A step costs a directional light's walk one iteration, a spot or point light's two (the
-  // quadrature). With translucent layers a local light's step also reaches the quadrature of
-  // every layer the walk can read, taken or not: kMaxTranslucentLayers + 1 more.
-  const std::uint64_t localPerEdge = translucentLayers ? 3 + kMaxTranslucentLayers : 2;
+  // quadrature). Translucent layers add, at a texel that holds them all, one iteration per layer
+  // read (the count and the overflow layer), and for a spot or point light a quadrature each.
+  const std::uint64_t layersRead = translucentLayers > 0 ? translucentLayers + 1 : 0;
+  const std::uint64_t localPerEdge = 2 + 2 * layersRead;
   // A point light's walk stays within the budget up to 4096² at two iterations a step (measured:
   // docs/REFERENCE.md).
   constexpr std::uint64_t kPointLightMapLimit = 4096;
   if (light == LightType::Point) return std::uint64_t(mapSize) * localPerEdge > kPointLightMapLimit * 2;
   // A ray crosses up to 2·N texel edges in each map it walks (every cascade of a directional light).
-  const std::uint64_t perEdge = light == LightType::Spot ? localPerEdge : 1;
+  const std::uint64_t perEdge = light == LightType::Spot ? localPerEdge : 1 + layersRead;
   return perEdge * 2 * std::uint64_t(mapSize) * mapCount > kLoopBudget;
 }
 

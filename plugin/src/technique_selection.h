@@ -32,9 +32,10 @@ TechniqueSelection selectTechnique(const TechniqueRequest& request);
 
 /// Whether a light's texel walk (the Reference's, and the epipolar passes' that walk) can exceed a
 /// CPU driver's loop budget of 65,535 iterations per shader invocation (docs/REFERENCE.md "Loop
-/// budget on lavapipe"), for `mapCount` maps of `mapSize`² texels, with or without translucent layers.
+/// budget on lavapipe"), for `mapCount` maps of `mapSize`² texels with `translucentLayers` layers each
+/// (ShadowMapDesc::translucentLayerCount; at texels that hold them all).
 bool walkCanOverrunCpuLoopBudget(LightType light, std::size_t mapCount, std::uint32_t mapSize,
-                                 bool translucentLayers = false);
+                                 std::uint32_t translucentLayers = 0);
 
 /// The note's words for a change ("" for None).
 const char* techniqueChangeNote(TechniqueChange change);

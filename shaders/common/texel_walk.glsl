@@ -174,50 +174,32 @@ vec3 tyn_walk_piece(bool directional, TynLocalLightRay local_ray, vec3 origin, v
   return tyn_local_light_piece(local_ray, a, b, false);
 }
 
-// One layer of tyn_walk_add_translucent_part: subtracts α_k P_k ∫_{behind k} g from `part` and
-// moves `kept` from P_k to P_{k+1}; the layer after the count is the overflow layer, only tested.
-void tyn_walk_translucent_layer(inout vec3 part, inout float kept, inout bool more, uint k, uint map, ivec2 texel,
-                                TynShadowRay r, bool directional, TynLocalLightRay local_ray, vec3 origin,
-                                vec3 dir, float a, float b) {
-  if (!more || k > frame.translucent_layer_count) return;
-  vec2 layer = tyn_translucent_layer(map, texel, k);
-  more = layer.x < 1.0;  // layers are packed: the first empty one ends the texel's list
-  if (!more) return;
-  vec2 behind = tyn_texel_behind_part(r, layer.x, a, b);
-  if (behind.y <= behind.x) return;
-  if (k == frame.translucent_layer_count) {
-    tyn_translucent_overflowed = true;
-    return;
-  }
-  part -= (layer.y * kept) * tyn_walk_piece(directional, local_ray, origin, dir, behind.x, behind.y);
-  kept *= 1.0 - layer.y;
-}
-
 // Adds the lit part [a, b] of texel `texel` of map `map` through its translucent layers, exactly.
 // The light reaching t keeps T(t) = Π (1 − α_k) over the layers t lies behind. Peeled layers are
 // sorted by depth, and the ray's depth is monotonic in t within a texel, so the sets "behind layer
 // k" are nested: T = P_n where n layers are behind, P_n = Π_{k<n} (1 − α_k), and since
 // P_{k+1} − P_k = −α_k P_k,  ∫ T g = ∫ g − Σ_k α_k P_k ∫_{behind k} g.
-// The layers are written out, not looped over: lavapipe counts every loop iteration of an
-// invocation against one budget (docs/REFERENCE.md "Loop budget on lavapipe"), and a loop here
-// would cost it at every lit texel of the walk.
+// The loop stops at the texel's first empty layer (layers are packed), so a texel without any
+// costs one iteration: a CPU driver runs both sides of every branch, masked, but leaves a loop as
+// soon as no lane goes on (docs/REFERENCE.md "Loop budget on lavapipe").
 void tyn_walk_add_translucent_part(inout vec3 sum, uint map, ivec2 texel, TynShadowRay r, bool directional,
                                    TynLocalLightRay local_ray, vec3 origin, vec3 dir, float a, float b) {
   vec3 part = tyn_walk_piece(directional, local_ray, origin, dir, a, b);
   float kept = 1.0;  // P_k
-  bool more = true;
-#define TYN_TRANSLUCENT_LAYER(k) \
-  tyn_walk_translucent_layer(part, kept, more, k, map, texel, r, directional, local_ray, origin, dir, a, b)
-  TYN_TRANSLUCENT_LAYER(0u);
-  TYN_TRANSLUCENT_LAYER(1u);
-  TYN_TRANSLUCENT_LAYER(2u);
-  TYN_TRANSLUCENT_LAYER(3u);
-  TYN_TRANSLUCENT_LAYER(4u);
-  TYN_TRANSLUCENT_LAYER(5u);
-  TYN_TRANSLUCENT_LAYER(6u);
-  TYN_TRANSLUCENT_LAYER(7u);
-  TYN_TRANSLUCENT_LAYER(8u);  // TYN_MAX_TRANSLUCENT_LAYERS + 1 layers, the overflow layer included
-#undef TYN_TRANSLUCENT_LAYER
+  for (uint k = 0u; k <= frame.translucent_layer_count; ++k) {
+    vec2 layer = tyn_translucent_layer(map, texel, k);
+    if (layer.x >= 1.0) break;
+    vec2 behind = tyn_texel_behind_part(r, layer.x, a, b);
+    if (behind.y > behind.x) {
+      // The layer after the count is the overflow layer: only tested.
+      if (k == frame.translucent_layer_count) {
+        tyn_translucent_overflowed = true;
+      } else {
+        part -= (layer.y * kept) * tyn_walk_piece(directional, local_ray, origin, dir, behind.x, behind.y);
+      }
+    }
+    kept *= 1.0 - layer.y;
+  }
   sum += max(part, vec3(0.0));  // rounding only: the exact value is ≥ 0
 }
 #endif

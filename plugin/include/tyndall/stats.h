@@ -156,7 +156,8 @@ struct Stats {
   /// A CPU driver (lavapipe) ends a shader invocation's loops after 65,535 iterations; a light's
   /// texel walk can exceed that and come out wrong: a point light's over maps above 4096², a
   /// directional light's over cascades whose sides add up to 32,768 texels or more (four of 8192²);
-  /// with translucent layers, a spot light's over maps above 2978² and a point light's above 744².
+  /// with translucent layers fewer (walkCanOverrunCpuLoopBudget: e.g. with 4 layers a spot light's
+  /// maps above 2730², a point light's above 682², a directional light's four cascades above 1365²).
   bool walkOverCpuLoopLimit = false;
   /// Read back from the frame of `lastTimings`: a view ray of the Reference crossed a shadow-map texel
   /// with more translucent surfaces than ShadowMapDesc::translucentLayerCount (the overflow layer

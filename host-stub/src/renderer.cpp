@@ -27,6 +27,22 @@ constexpr glm::vec3 kAmbient{0.02f, 0.03f, 0.05f};
 constexpr std::uint32_t kMaxFramesInFlight = 16;
 static_assert(gpu::kHostMaxCascades == static_cast<int>(kMaxSceneCascades));
 
+// The stages and accesses the frame's barriers name.
+using Scope = vk::Barriers::Scope;
+struct Scopes {
+  // Whatever touched a slot's image last (our passes, an effect in any stage, a readback) is
+  // ordered before the frame's first write: execution dependency on all commands for the reads,
+  // MEMORY_WRITE for the writes. The contents are discarded (UNDEFINED) and regenerated.
+  Scope previousUse{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
+  Scope depthAttachment{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+  Scope depthWritten{depthAttachment.stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+  Scope colorAttachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+  Scope colorWritten{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+  Scope fragmentRead{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+};
+
 // What a frame slot holds for one light.
 struct LightTargets {
   vk::Buffer params;  // gpu::LightingParams, host-visible
@@ -543,19 +559,13 @@ void Renderer::Impl::writeParams(FrameSlot& slot) const {
 
 void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const {
   const VkCommandBuffer cmd = slot.cmd;
-  using Scope = vk::Barriers::Scope;
-  // Whatever touched a slot's image last (our passes, an effect in any stage, a readback) is
-  // ordered before the frame's first write: execution dependency on all commands for the reads,
-  // MEMORY_WRITE for the writes. The contents are discarded (UNDEFINED) and regenerated.
-  const Scope previousUse{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
-  const Scope depthAttachment{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  const Scope depthWritten{depthAttachment.stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  const Scope colorAttachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                              VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  const Scope colorWritten{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  const Scope fragmentRead{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+  const Scopes scopes;
+  const Scope& previousUse = scopes.previousUse;
+  const Scope& depthAttachment = scopes.depthAttachment;
+  const Scope& depthWritten = scopes.depthWritten;
+  const Scope& colorAttachment = scopes.colorAttachment;
+  const Scope& colorWritten = scopes.colorWritten;
+  const Scope& fragmentRead = scopes.fragmentRead;
   const Scope clearWrite{VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
   constexpr VkImageLayout kUndefined = VK_IMAGE_LAYOUT_UNDEFINED;
   constexpr VkImageLayout kDepthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
@@ -644,16 +654,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
 // from here on (peels, lighting, effects), and each layer is written, then read by the next peel
 // and by effects.
 void Renderer::Impl::recordTranslucentLayers(VkCommandBuffer cmd, const FrameSlot& slot) const {
-  using Scope = vk::Barriers::Scope;
-  const Scope previousUse{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
-  const Scope depthAttachment{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                              VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT |
-                                  VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  const Scope depthWritten{depthAttachment.stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  const Scope colorAttachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                              VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  const Scope colorWritten{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  const Scope fragmentRead{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
+  const Scopes scopes;
+  const Scope& previousUse = scopes.previousUse;
+  const Scope& depthAttachment = scopes.depthAttachment;
+  const Scope& depthWritten = scopes.depthWritten;
+  const Scope& colorAttachment = scopes.colorAttachment;
+  const Scope& colorWritten = scopes.colorWritten;
+  const Scope& fragmentRead = scopes.fragmentRead;
   constexpr VkImageLayout kDepthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
   constexpr VkImageLayout kColorLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;

@@ -78,6 +78,23 @@ constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // Frames a retired L_in target is kept as a spare (about two seconds at 60 Hz).
 constexpr std::uint32_t kSpareTargetFrames = 120;
 
+// A 1×1 image bound in place of an input the frame lacks (every descriptor must be valid), cleared
+// to `value` in the first frame that binds it: the clear now, the hand-over to compute reads in
+// `acquire`.
+void clearPlaceholderOnce(const Gpu& gpu, VkCommandBuffer cmd, const OwnedImage& image, const VkClearColorValue& value,
+                          bool& cleared, BarrierBatch& acquire) {
+  if (cleared) return;
+  const VkPipelineStageFlags compute = VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT;
+  const ImageUse transferWrite{VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                               VK_ACCESS_TRANSFER_WRITE_BIT};
+  imageBarrier(gpu, cmd, image.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, compute, 0}, transferWrite);
+  const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+  gpu.vk.vkCmdClearColorImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &value, 1, &range);
+  acquire.image(image.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, transferWrite,
+                {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, compute, VK_ACCESS_SHADER_READ_BIT});
+  cleared = true;
+}
+
 // One instance of each technique: a light's.
 struct TechniqueSet {
   ReferenceTechnique reference;
@@ -835,17 +852,7 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
     acquire.image(frame.lightColor.image, VK_IMAGE_ASPECT_COLOR_BIT, frame.lightColor.arrayLayer,
                   hostBefore(frame.lightColor), {bindings.lightColorLayout, compute, VK_ACCESS_SHADER_READ_BIT});
   } else {
-    if (!whiteCleared) {
-      imageBarrier(gpu, cmd, white.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, compute, 0},
-                   {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
-      const VkClearColorValue one{{1.0f, 1.0f, 1.0f, 1.0f}};
-      const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      gpu.vk.vkCmdClearColorImage(cmd, white.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &one, 1, &range);
-      acquire.image(white.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                    {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
-                    {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, compute, VK_ACCESS_SHADER_READ_BIT});
-      whiteCleared = true;
-    }
+    clearPlaceholderOnce(gpu, cmd, white, {{1.0f, 1.0f, 1.0f, 1.0f}}, whiteCleared, acquire);
     bindings.lightColor = white.view;
     bindings.lightColorLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
   }
@@ -865,17 +872,7 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
                     frame.shadowMaps[i].translucentLayerCount + 1);
     }
   }
-  if (!noTranslucentLayersCleared) {
-    imageBarrier(gpu, cmd, noTranslucentLayers.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, compute, 0},
-                 {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT});
-    const VkClearColorValue noSurface{{1.0f, 0.0f, 0.0f, 0.0f}};
-    const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    gpu.vk.vkCmdClearColorImage(cmd, noTranslucentLayers.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &noSurface, 1, &range);
-    acquire.image(noTranslucentLayers.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
-                  {VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT},
-                  {VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, compute, VK_ACCESS_SHADER_READ_BIT});
-    noTranslucentLayersCleared = true;
-  }
+  clearPlaceholderOnce(gpu, cmd, noTranslucentLayers, {{1.0f, 0.0f, 0.0f, 0.0f}}, noTranslucentLayersCleared, acquire);
   bindings.noTranslucentLayers = noTranslucentLayers.view;
 
   if (frame.debugView != DebugView::None && technique.drawsDebugViews()) {

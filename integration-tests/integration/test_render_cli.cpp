@@ -88,6 +88,8 @@ TEST(RenderCli, BadInputFailsAndWritesNothing) {
       {scene, "--cascades", "0"},
       {scene, "--cascades", "5"},
       {scene, "--cascades", "two"},
+      {scene, "--translucent-layers", "0"},
+      {scene, "--translucent-layers", "9"},
       {scene, "--frames", "0"},
       {scene, "--profile", "auto", "--budget-ms", "0"},
       {scene, "--profile", "auto", "--budget-ms", "-2"},

@@ -29,19 +29,17 @@ static_assert(gpu::kHostMaxCascades == static_cast<int>(kMaxSceneCascades));
 
 // The stages and accesses the frame's barriers name.
 using Scope = vk::Barriers::Scope;
-struct Scopes {
-  // Whatever touched a slot's image last (our passes, an effect in any stage, a readback) is
-  // ordered before the frame's first write: execution dependency on all commands for the reads,
-  // MEMORY_WRITE for the writes. The contents are discarded (UNDEFINED) and regenerated.
-  Scope previousUse{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
-  Scope depthAttachment{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
-                        VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  Scope depthWritten{depthAttachment.stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
-  Scope colorAttachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
-                        VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  Scope colorWritten{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
-  Scope fragmentRead{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
-};
+// Whatever touched a slot's image last (our passes, an effect in any stage, a readback) is ordered
+// before the frame's first write: execution dependency on all commands for the reads, MEMORY_WRITE
+// for the writes. The contents are discarded (UNDEFINED) and regenerated.
+const Scope kPreviousUse{VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT};
+const Scope kDepthAttachment{VK_PIPELINE_STAGE_2_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_2_LATE_FRAGMENT_TESTS_BIT,
+                             VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+const Scope kDepthWritten{kDepthAttachment.stages, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT};
+const Scope kColorAttachment{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT,
+                             VK_ACCESS_2_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+const Scope kColorWritten{VK_PIPELINE_STAGE_2_COLOR_ATTACHMENT_OUTPUT_BIT, VK_ACCESS_2_COLOR_ATTACHMENT_WRITE_BIT};
+const Scope kFragmentRead{VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT};
 
 // What a frame slot holds for one light.
 struct LightTargets {
@@ -199,7 +197,6 @@ struct Renderer::Impl {
   detail::LightingPass lightingPass;
   detail::TranslucentPass translucentPass;
   detail::ForwardPass forwardPass;
-  std::uint32_t peelSetCount = 0;  // descriptor sets the translucent pass holds
   std::uint32_t nextPeelSet = 0;   // the next one createSlot hands out
   CameraSetup camera;
   std::vector<LightState> lights;
@@ -349,7 +346,7 @@ bool Renderer::Impl::init(const Scene& sceneIn, const RenderSettings& settingsIn
     if (!createLightColor(*state.light, state.color, error)) return false;
   }
   // One peel descriptor set per frame slot, light, map and layer (the overflow layer included).
-  peelSetCount = 0;
+  std::uint32_t peelSetCount = 0;
   if (geometry.translucentIndexCount > 0) {
     for (const LightState& state : lights) {
       peelSetCount += static_cast<std::uint32_t>(state.shadowViews.size()) * (settings.translucentLayers + 1);
@@ -559,13 +556,6 @@ void Renderer::Impl::writeParams(FrameSlot& slot) const {
 
 void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const {
   const VkCommandBuffer cmd = slot.cmd;
-  const Scopes scopes;
-  const Scope& previousUse = scopes.previousUse;
-  const Scope& depthAttachment = scopes.depthAttachment;
-  const Scope& depthWritten = scopes.depthWritten;
-  const Scope& colorAttachment = scopes.colorAttachment;
-  const Scope& colorWritten = scopes.colorWritten;
-  const Scope& fragmentRead = scopes.fragmentRead;
   const Scope clearWrite{VK_PIPELINE_STAGE_2_CLEAR_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT};
   constexpr VkImageLayout kUndefined = VK_IMAGE_LAYOUT_UNDEFINED;
   constexpr VkImageLayout kDepthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
@@ -578,17 +568,17 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
   vk::Barriers barriers;
   for (const LightTargets& light : slot.lights) {
     for (const vk::Image& map : light.shadowMaps) {
-      barriers.image(map.image(), kDepthAspect, kUndefined, kDepthLayout, previousUse, depthAttachment);
+      barriers.image(map.image(), kDepthAspect, kUndefined, kDepthLayout, kPreviousUse, kDepthAttachment);
     }
   }
-  barriers.image(slot.depth.image(), kDepthAspect, kUndefined, kDepthLayout, previousUse, depthAttachment)
-      .image(slot.albedo.image(), kColorAspect, kUndefined, kColorLayout, previousUse, colorAttachment)
-      .image(slot.normal.image(), kColorAspect, kUndefined, kColorLayout, previousUse, colorAttachment)
-      .image(slot.color.image(), kColorAspect, kUndefined, kColorLayout, previousUse, colorAttachment);
+  barriers.image(slot.depth.image(), kDepthAspect, kUndefined, kDepthLayout, kPreviousUse, kDepthAttachment)
+      .image(slot.albedo.image(), kColorAspect, kUndefined, kColorLayout, kPreviousUse, kColorAttachment)
+      .image(slot.normal.image(), kColorAspect, kUndefined, kColorLayout, kPreviousUse, kColorAttachment)
+      .image(slot.color.image(), kColorAspect, kUndefined, kColorLayout, kPreviousUse, kColorAttachment);
   if (settings.aovImages) {
-    barriers.image(slot.aovScattering.image(), kColorAspect, kUndefined, kAovLayout, previousUse, clearWrite)
-        .image(slot.aovTransmittance.image(), kColorAspect, kUndefined, kAovLayout, previousUse, clearWrite)
-        .image(slot.aovDebug.image(), kColorAspect, kUndefined, kAovLayout, previousUse, clearWrite);
+    barriers.image(slot.aovScattering.image(), kColorAspect, kUndefined, kAovLayout, kPreviousUse, clearWrite)
+        .image(slot.aovTransmittance.image(), kColorAspect, kUndefined, kAovLayout, kPreviousUse, clearWrite)
+        .image(slot.aovDebug.image(), kColorAspect, kUndefined, kAovLayout, kPreviousUse, clearWrite);
   }
   barriers.record(cmd);
 
@@ -615,13 +605,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
   if (geometry.translucentIndexCount == 0) {  // else read by the peel pass already
     for (const LightTargets& light : slot.lights) {
       for (const vk::Image& map : light.shadowMaps) {
-        barriers.image(map.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead);
+        barriers.image(map.image(), kDepthAspect, kDepthLayout, kReadLayout, kDepthWritten, kFragmentRead);
       }
     }
   }
-  barriers.image(slot.depth.image(), kDepthAspect, kDepthLayout, kReadLayout, depthWritten, fragmentRead)
-      .image(slot.albedo.image(), kColorAspect, kColorLayout, kReadLayout, colorWritten, fragmentRead)
-      .image(slot.normal.image(), kColorAspect, kColorLayout, kReadLayout, colorWritten, fragmentRead)
+  barriers.image(slot.depth.image(), kDepthAspect, kDepthLayout, kReadLayout, kDepthWritten, kFragmentRead)
+      .image(slot.albedo.image(), kColorAspect, kColorLayout, kReadLayout, kColorWritten, kFragmentRead)
+      .image(slot.normal.image(), kColorAspect, kColorLayout, kReadLayout, kColorWritten, kFragmentRead)
       .record(cmd);
 
   lightingPass.record(cmd, slotIndex, slot.color);
@@ -631,13 +621,13 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
   // deliberately no extra barrier for them: post-processes order themselves after our writes.
   barriers
       .image(slot.depth.image(), kDepthAspect, kReadLayout, kDepthLayout,
-             {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE}, depthAttachment)
+             {VK_PIPELINE_STAGE_2_FRAGMENT_SHADER_BIT, VK_ACCESS_2_NONE}, kDepthAttachment)
       .record(cmd);
 
   // Translucent objects, as an engine draws them after its deferred passes: blended over the lit
   // picture, tested against the depth buffer and left out of it.
   if (geometry.translucentIndexCount > 0) {
-    barriers.image(slot.color.image(), kColorAspect, kColorLayout, kColorLayout, colorWritten, colorAttachment)
+    barriers.image(slot.color.image(), kColorAspect, kColorLayout, kColorLayout, kColorWritten, kColorAttachment)
         .record(cmd);
     const Light& light = *lights[0].light;
     gpu::ForwardPush push{};
@@ -654,13 +644,6 @@ void Renderer::Impl::recordFrame(FrameSlot& slot, std::uint32_t slotIndex) const
 // from here on (peels, lighting, effects), and each layer is written, then read by the next peel
 // and by effects.
 void Renderer::Impl::recordTranslucentLayers(VkCommandBuffer cmd, const FrameSlot& slot) const {
-  const Scopes scopes;
-  const Scope& previousUse = scopes.previousUse;
-  const Scope& depthAttachment = scopes.depthAttachment;
-  const Scope& depthWritten = scopes.depthWritten;
-  const Scope& colorAttachment = scopes.colorAttachment;
-  const Scope& colorWritten = scopes.colorWritten;
-  const Scope& fragmentRead = scopes.fragmentRead;
   constexpr VkImageLayout kDepthLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
   constexpr VkImageLayout kColorLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
   constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
@@ -669,10 +652,10 @@ void Renderer::Impl::recordTranslucentLayers(VkCommandBuffer cmd, const FrameSlo
   vk::Barriers barriers;
   for (const LightTargets& light : slot.lights) {
     for (std::size_t m = 0; m < light.shadowMaps.size(); ++m) {
-      barriers.image(light.shadowMaps[m].image(), VK_IMAGE_ASPECT_DEPTH_BIT, kDepthLayout, kReadLayout, depthWritten,
-                     fragmentRead);
+      barriers.image(light.shadowMaps[m].image(), VK_IMAGE_ASPECT_DEPTH_BIT, kDepthLayout, kReadLayout, kDepthWritten,
+                     kFragmentRead);
       barriers.image(light.translucentLayers[m].image(), VK_IMAGE_ASPECT_COLOR_BIT, VK_IMAGE_LAYOUT_UNDEFINED,
-                     kColorLayout, previousUse, colorAttachment, 0, layers);
+                     kColorLayout, kPreviousUse, kColorAttachment, 0, layers);
     }
   }
   barriers.record(cmd);
@@ -683,16 +666,16 @@ void Renderer::Impl::recordTranslucentLayers(VkCommandBuffer cmd, const FrameSlo
       const vk::Image& image = light.translucentLayers[m];
       for (std::uint32_t layer = 0; layer < layers; ++layer) {
         if (layer > 0) {
-          barriers.image(image.image(), VK_IMAGE_ASPECT_COLOR_BIT, kColorLayout, kReadLayout, colorWritten,
-                         fragmentRead, layer - 1);
+          barriers.image(image.image(), VK_IMAGE_ASPECT_COLOR_BIT, kColorLayout, kReadLayout, kColorWritten,
+                         kFragmentRead, layer - 1);
         }
         barriers.image(light.peelDepth.image(), VK_IMAGE_ASPECT_DEPTH_BIT, VK_IMAGE_LAYOUT_UNDEFINED, kDepthLayout,
-                       depthAttachment, depthAttachment);
+                       kDepthAttachment, kDepthAttachment);
         barriers.record(cmd);
         translucentPass.record(cmd, geometry, image, layer, set++, light.peelDepth,
                                glm::mat4(lights[l].shadowViews[m].worldToShadowClip));
       }
-      barriers.image(image.image(), VK_IMAGE_ASPECT_COLOR_BIT, kColorLayout, kReadLayout, colorWritten, fragmentRead,
+      barriers.image(image.image(), VK_IMAGE_ASPECT_COLOR_BIT, kColorLayout, kReadLayout, kColorWritten, kFragmentRead,
                      layers - 1);
     }
   }

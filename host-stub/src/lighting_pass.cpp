@@ -23,13 +23,7 @@ bool LightingPass::create(const vk::GpuContext& gpu, VkFormat colorFormat, std::
   const std::uint32_t setCount = slotCount * lightCount;
 
   // The G-buffer is read with texelFetch; the sampler only has to exist.
-  VkSamplerCreateInfo pointInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  pointInfo.magFilter = VK_FILTER_NEAREST;
-  pointInfo.minFilter = VK_FILTER_NEAREST;
-  pointInfo.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-  pointInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  pointInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  pointInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  const VkSamplerCreateInfo pointInfo = vk::clampedSamplerInfo(VK_FILTER_NEAREST);
   VkSampler sampler = VK_NULL_HANDLE;
   if (!vk::check(vkCreateSampler(device_, &pointInfo, nullptr, &sampler), "vkCreateSampler", error))
     return false;

@@ -7,12 +7,7 @@ namespace tyndall::host::detail {
 bool TranslucentPass::create(const vk::GpuContext& gpu, std::uint32_t setCount, std::string& error) {
   device_ = gpu.device;
   // Both inputs are read with texelFetch; the sampler only has to exist.
-  VkSamplerCreateInfo samplerInfo{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  samplerInfo.magFilter = VK_FILTER_NEAREST;
-  samplerInfo.minFilter = VK_FILTER_NEAREST;
-  samplerInfo.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  samplerInfo.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-  samplerInfo.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  const VkSamplerCreateInfo samplerInfo = vk::clampedSamplerInfo(VK_FILTER_NEAREST);
   VkSampler sampler = VK_NULL_HANDLE;
   if (!vk::check(vkCreateSampler(device_, &samplerInfo, nullptr, &sampler), "vkCreateSampler", error)) return false;
   sampler_ = vk::UniqueSampler(device_, sampler);

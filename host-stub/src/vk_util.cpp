@@ -180,6 +180,17 @@ void Buffer::reset() {
   mapped_ = nullptr;
 }
 
+VkSamplerCreateInfo clampedSamplerInfo(VkFilter filter) {
+  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  info.magFilter = filter;
+  info.minFilter = filter;
+  info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+  info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+  return info;
+}
+
 Barriers& Barriers::image(VkImage image, VkImageAspectFlags aspect, VkImageLayout oldLayout,
                           VkImageLayout newLayout, Scope src, Scope dst, std::uint32_t layer,
                           std::uint32_t layerCount) {

@@ -161,6 +161,10 @@ class Barriers {
   std::vector<VkBufferMemoryBarrier2> buffers_;
 };
 
+/// A sampler's description with `filter` for magnification and minification, nearest mips and
+/// every address clamped to the edge (the passes' samplers start from it).
+VkSamplerCreateInfo clampedSamplerInfo(VkFilter filter);
+
 /// Records `body` into a fresh command buffer from `pool`, submits it and waits for it.
 bool submitAndWait(const GpuContext& gpu, VkCommandPool pool,
                    const std::function<void(VkCommandBuffer)>& body, std::string& error);

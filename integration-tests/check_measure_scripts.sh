@@ -2,8 +2,8 @@
 # scripts/bundle-binaries.sh and scripts/measure-gpu.sh end to end at a tiny size: the bundle loads
 # every library but the C runtime from itself (bundle-binaries.sh fails otherwise), its programs
 # run from it, and measure-gpu.sh gathers a table row per run (the cost part's two runs too) and
-# names the device; scripts/measure.sh's reference, translucent and memory parts print a row per run, and an
-# unknown part is refused with the usage text.
+# names the device, its tradeoffs part keeps to TRADEOFFS_BUDGET_S; scripts/measure.sh's reference,
+# translucent and memory parts print a row per run, and an unknown part is refused with the usage text.
 # Usage: check_measure_scripts.sh BUILD_DIR WORK_DIR (absolute paths)
 set -euo pipefail
 build="$1"
@@ -34,6 +34,17 @@ done
 grep -q '^cost: [0-9]* s$' "$keep/measure-gpu.log" || fail "no cost timing in the log"
 grep -q '^device: ' "$keep/measure-gpu.log" && ! grep -q '^device: unknown' "$keep/measure-gpu.log" ||
   fail "the log does not name the device"
+# The tradeoffs part within TRADEOFFS_BUDGET_S: each size a bench run of its own, the first given
+# 60% of the budget, the last the rest, each stopped at its limit and said so in the log.
+start=$SECONDS
+LD_LIBRARY_PATH="$work/bundle/lib" GPU_OUT="$work/gpu-tradeoffs" PARTS=tradeoffs TRADEOFF_SIZES="32x18 48x27" \
+  TRADEOFFS_BUDGET_S=30 SCENES=pillars FRAMES=1 "$repo/scripts/measure-gpu.sh" "$work/bundle"
+[ $((SECONDS - start)) -lt 60 ] || fail "the tradeoffs part took $((SECONDS - start)) s with a 30 s budget"
+tradeoffs_log="$work/gpu-tradeoffs/keep/measure-gpu.log"
+for size in 32x18 48x27; do
+  grep -E -q "^tradeoffs $size: (stopped at its limit after [0-9]+ s, [0-9]+ scenes measured|[0-9]+ s, 1 scenes)\$" \
+    "$tradeoffs_log" || fail "no line for $size in $tradeoffs_log"
+done
 table="$(LD_LIBRARY_PATH="$work/bundle/lib" REFERENCE_OUT="$work/reference" SCENES=pillars SIZES=32x18 FRAMES=2 \
   "$repo/scripts/measure.sh" reference "$work/bundle")"
 grep -q '^| pillars | 32x18 | 2048 | [0-9.]* | ' <<<"$table" || fail "no reference row: $table"

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
 # The measurements behind the documents' GPU sections, in one run on a GPU, each part timed:
-#   tradeoffs    tyndall-bench's default sweep at 1920x1080 and 3840x2160 with a 2048² map:
-#                docs/TRADEOFFS-H200.md comes from its results.json, written again here (with the
-#                plots, which need matplotlib) by FROM=$GPU_OUT/keep/tradeoffs-results.json
-#                DOC=docs/TRADEOFFS-H200.md scripts/measure.sh tradeoffs
+#   tradeoffs    tyndall-bench's default sweep with a 2048² map, one run per size (1920x1080, then
+#                3840x2160), each run's results.json kept as tradeoffs-WxH-results.json as soon as it
+#                ends: docs/TRADEOFFS-H200.md comes from the first size's, written again here (with the
+#                plots, which need matplotlib) by FROM=$GPU_OUT/keep/tradeoffs-1920x1080-results.json
+#                DOC=docs/TRADEOFFS-H200.md scripts/measure.sh tradeoffs. With TRADEOFFS_BUDGET_S the
+#                part stops within that many seconds: every size but the last gets at most 60% of what
+#                is left, the last all of it; a run stopped keeps the scenes it finished (the bench
+#                rewrites its results after each scene) and the log says how many.
 #   epipolar     scripts/measure.sh epipolar with 20 frames (12 for the Reference): docs/measurements/epipolar-<device>-<date>.md
 #   prefiltered  scripts/measure.sh prefiltered at 1280x720 and 1920x1080 with 1024² and 2048² maps,
 #                every storage variant, 20 frames: docs/measurements/prefiltered-<device>-<date>.md
@@ -16,7 +20,7 @@
 # scripts/measure-gpu.sh DEST.
 # Usage: scripts/measure-gpu.sh [build-dir] (default: build)
 # Environment: PARTS (tradeoffs epipolar prefiltered cost), GPU_OUT (out/gpu), FRAMES (20);
-#   TRADEOFF_SIZES (1920x1080,3840x2160); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096),
+#   TRADEOFF_SIZES (1920x1080 3840x2160), TRADEOFFS_BUDGET_S (none); EPIPOLAR_SIZES (1280x720 1920x1080), EPIPOLAR_MAPS (2048 4096),
 #   EPIPOLAR_RESOLUTIONS (full half);
 #   PREFILTERED_SIZES (1280x720 1920x1080), PREFILTERED_MAPS (1024 2048); COST_SIZE (1920x1080),
 #   COST_MAP (2048), SPACINGS (the cost part's forests); SCENES (names, space-separated) passes
@@ -38,10 +42,35 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered cost}; do
   start=$SECONDS
   case "$part" in
     tradeoffs)
-      args=(--sizes "${TRADEOFF_SIZES:-1920x1080,3840x2160}" --shadow-maps 2048 --frames "$frames" --out "$out/tradeoffs")
-      [ -n "${SCENES:-}" ] && args+=(--scenes "${SCENES// /,}")
-      "$build/samples/tyndall-bench" "${args[@]}" 2>>"$log" | tail -n 3 >>"$log"
-      cp "$out/tradeoffs/results.json" "$out/keep/tradeoffs-results.json"
+      read -r -a sizes <<<"${TRADEOFF_SIZES:-1920x1080 3840x2160}"; sizes=(${sizes[@]//,/ })
+      [ "${#sizes[@]}" -gt 0 ] || sizes=(1920x1080 3840x2160)
+      for i in "${!sizes[@]}"; do
+        size="${sizes[$i]}"
+        args=(--sizes "$size" --shadow-maps 2048 --frames "$frames" --out "$out/tradeoffs-$size")
+        [ -n "${SCENES:-}" ] && args+=(--scenes "${SCENES// /,}")
+        limit=()
+        if [ -n "${TRADEOFFS_BUDGET_S:-}" ]; then
+          left=$((TRADEOFFS_BUDGET_S - (SECONDS - start)))
+          [ "$i" -lt $((${#sizes[@]} - 1)) ] && left=$((left * 6 / 10))
+          [ "$left" -ge 10 ] || { say "tradeoffs $size: no time left, not run"; continue; }
+          limit=(timeout "$left")
+        fi
+        size_start=$SECONDS
+        status=0
+        "${limit[@]}" "$build/samples/tyndall-bench" "${args[@]}" 2>>"$log" | tail -n 3 >>"$log" || status=$?
+        if [ -f "$out/tradeoffs-$size/results.json" ]; then
+          cp "$out/tradeoffs-$size/results.json" "$out/keep/tradeoffs-$size-results.json"
+        fi
+        scenes_done="$(python3 -c 'import json,sys; print(len({r["scene"] for r in json.load(open(sys.argv[1]))["rows"]}))' \
+          "$out/keep/tradeoffs-$size-results.json" 2>/dev/null || echo 0)"
+        if [ "$status" -eq 124 ]; then
+          say "tradeoffs $size: stopped at its limit after $((SECONDS - size_start)) s, $scenes_done scenes measured"
+        elif [ "$status" -ne 0 ]; then
+          say "tradeoffs $size: tyndall-bench failed (status $status), $scenes_done scenes measured"
+        else
+          say "tradeoffs $size: $((SECONDS - size_start)) s, $scenes_done scenes"
+        fi
+      done
       ;;
     epipolar)
       BENCH_OUT="$out/epipolar" FRAMES="$frames" REFERENCE_FRAMES="${REFERENCE_FRAMES:-12}" \
@@ -73,7 +102,7 @@ done
 device="$(python3 - "$out" <<'PY'
 import glob, json, os, sys
 out = sys.argv[1]
-candidates = [f"{out}/keep/tradeoffs-results.json"] + sorted(glob.glob(f"{out}/epipolar/*-reference.json")) + \
+candidates = sorted(glob.glob(f"{out}/keep/tradeoffs-*-results.json")) + sorted(glob.glob(f"{out}/epipolar/*-reference.json")) + \
     sorted(glob.glob(f"{out}/prefiltered/*-reference.json")) + sorted(glob.glob(f"{out}/cost/defaults/*-reference.json"))
 for path in candidates:
     if os.path.exists(path):

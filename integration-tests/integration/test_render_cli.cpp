@@ -70,6 +70,8 @@ TEST(RenderCli, WritesEveryOutput) {
   EXPECT_TRUE(timings["dispatches"].is_number_unsigned());
   ASSERT_TRUE(timings.contains("barriers"));
   EXPECT_TRUE(timings["barriers"].is_number_unsigned());
+  EXPECT_EQ(timings["scatteringResolution"], "full");
+  EXPECT_EQ(timings["resolutionChange"], "none");
 }
 
 TEST(RenderCli, BadInputFailsAndWritesNothing) {

@@ -95,6 +95,23 @@ void clearPlaceholderOnce(const Gpu& gpu, VkCommandBuffer cmd, const OwnedImage&
   cleared = true;
 }
 
+// How close to the view, in target pixels, a local light's image keeps L_in at full resolution:
+// its 1/distance peak spreads over the upsample's taps, which reach one block from each pixel;
+// a few blocks out the peak has fallen to what the bilateral blend interpolates.
+constexpr double kLocalLightImageMarginBlocks = 4.0;
+
+// Whether a spot or point light that scatters projects within kLocalLightImageMarginBlocks target
+// pixels of the view at `resolution` (ResolutionChange::LocalLightInView).
+bool localLightImageNearView(const FrameSetup& setup, VkExtent2D extent, ScatteringResolution resolution) {
+  const double margin = kLocalLightImageMarginBlocks * static_cast<double>(resolution);
+  for (const LightSetup& light : setup.lights) {
+    if (light.skipped != LightSkipped::No || !light.imagePixel) continue;
+    const glm::dvec2 p = *light.imagePixel;
+    if (p.x >= -margin && p.y >= -margin && p.x <= extent.width + margin && p.y <= extent.height + margin) return true;
+  }
+  return false;
+}
+
 // One instance of each technique: a light's.
 struct TechniqueSet {
   ReferenceTechnique reference;
@@ -595,8 +612,14 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   }
   // The L_in target at the lead technique's resolution, which every light's technique runs at; a
   // frame without one keeps the current target.
+  stats.resolutionChange = ResolutionChange::None;
   if (leadTechnique != nullptr) {
-    if (Outcome o = useResolution(leadTechnique->resolution(runs.front().frame, choice)); !o) return fail(o);
+    ScatteringResolution wanted = leadTechnique->resolution(runs.front().frame, choice);
+    if (wanted != ScatteringResolution::Full && localLightImageNearView(setup, extent, wanted)) {
+      wanted = ScatteringResolution::Full;
+      stats.resolutionChange = ResolutionChange::LocalLightInView;
+    }
+    if (Outcome o = useResolution(wanted); !o) return fail(o);
   }
   retiredTargets.release(stats.frameIndex, desc.maxFramesInFlight + kSpareTargetFrames,
                          [&](OwnedImage& image) { destroyImage(gpu, image); });
@@ -629,6 +652,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   if (leadTechnique != nullptr) {
     note += reports[lead].note;
     if (reduced) note += std::string("; L_in at ") + to_string(resolution) + " resolution, upsampled by the composite";
+    if (stats.resolutionChange == ResolutionChange::LocalLightInView) {
+      note += "; L_in at full resolution: a spot or point light's image is in view (its peak would spread over the "
+              "upsampling blocks)";
+    }
   }
   if (lightCount > 1) {
     std::string summary = "; " + std::to_string(lightCount) + " lights:";

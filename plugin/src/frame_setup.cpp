@@ -407,6 +407,13 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
       l.skipped = LightSkipped::OutsideView;
     }
     out.scatters = out.scatters || l.skipped == LightSkipped::No;
+    if (light.type != LightType::Directional) {
+      const glm::dvec4 clip = projection * toMat(frame.camera.view) * glm::dvec4(toVec(light.position), 1.0);
+      if (clip.w > 0.0) {
+        const glm::dvec2 ndc = glm::dvec2(clip) / clip.w;
+        l.imagePixel = (ndc * 0.5 + 0.5) * glm::dvec2(outputExtent.width, outputExtent.height);
+      }
+    }
   }
   return {};
 }

@@ -5,6 +5,7 @@
 #include "common/shared_constants.h"
 #include "gpu.h"
 
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct LightSetup {
   std::span<const ShadowMapDesc> shadowMaps;
   ImageRef lightColor;
   LightSkipped skipped = LightSkipped::No;  ///< why it records nothing (Off, OutsideView, NothingScatters)
+  /// A spot or point light in front of the camera: where its position lands, in output pixels
+  /// (possibly off the view).
+  std::optional<glm::dvec2> imagePixel;
 };
 
 struct FrameSetup {

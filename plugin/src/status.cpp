@@ -66,6 +66,14 @@ const char* to_string(TechniqueChange change) noexcept {
   return "unknown";
 }
 
+const char* to_string(ResolutionChange change) noexcept {
+  switch (change) {
+    case ResolutionChange::None: return "none";
+    case ResolutionChange::LocalLightInView: return "local-light-in-view";
+  }
+  return "unknown";
+}
+
 const char* to_string(LightSkipped reason) noexcept {
   switch (reason) {
     case LightSkipped::No: return "no";

@@ -119,7 +119,8 @@ std::string rowsMarkdown(const std::vector<Row>& rows) {
       "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const Row& r : rows) {
     out += "| " + r.scene + " | " + std::to_string(r.width) + "×" + std::to_string(r.height) + " | " +
-           std::to_string(r.shadowMap) + "² | " + r.technique + " | `" + r.parameters + "` | ";
+           std::to_string(r.shadowMap) + "² | " + r.technique + " | `" + r.parameters + "`" +
+           (r.measured && !r.note.empty() ? ": " + r.note : std::string()) + " | ";
     if (!r.measured) {
       out += r.note + " ||||||||||||||\n";
       continue;

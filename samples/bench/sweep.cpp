@@ -468,6 +468,9 @@ class Sweep {
     row.timeRatioToReference =
         row.referenceMilliseconds > 0.0 ? row.totalMilliseconds / row.referenceMilliseconds : 0.0;
     row.composite = to_string(run.stats.composite);
+    if (run.stats.resolutionChange != ResolutionChange::None) {
+      row.note = std::string("L_in at full resolution (") + to_string(run.stats.resolutionChange) + ")";
+    }
     const double floorMs = compositeFloorMilliseconds(row);
     row.timeRatioToFloor = floorMs > 0.0 ? row.totalMilliseconds / floorMs : 0.0;
     row.dispatches = run.stats.dispatches;

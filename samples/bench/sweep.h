@@ -83,6 +83,7 @@ struct Row {
   std::string configuration, technique, parameters;
   std::string techniqueUsed;  ///< Stats::technique (a profile or fallback may differ)
   bool measured = false;      ///< false: skipped, `note` says why
+  /// Why it was skipped, or for a measured row what Tyndall changed (L_in at full resolution).
   std::string note;
   std::map<std::string, double> passMilliseconds;  ///< median per pass
   std::vector<std::string> passOrder;              ///< recording order of the last frame

@@ -342,6 +342,7 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["passesRecorded"] = result.stats.passesRecorded;
   json["composite"] = to_string(result.stats.composite);
   json["scatteringResolution"] = to_string(result.stats.scatteringResolution);
+  json["resolutionChange"] = to_string(result.stats.resolutionChange);
   json["dispatches"] = result.stats.dispatches;
   json["barriers"] = result.stats.barriers;
   if (!result.stats.lights.empty() && result.stats.lights[0].translucentLayers > 0) {

@@ -12,6 +12,7 @@ packages=(
   python3  # scripts/measure.sh's tables, scripts/generate-forest.py
   python3-matplotlib  # scripts/plot-pareto.py: tyndall-bench's plots
   clang libclang-rt-14-dev  # scripts/fuzz.sh: libFuzzer with AddressSanitizer and UBSan
+  libglvnd0 libglx0 libegl1 libopengl0  # scripts/bundle-binaries.sh: GL dispatch for a GPU's driver
 )
 
 missing=()

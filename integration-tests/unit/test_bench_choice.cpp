@@ -397,5 +397,21 @@ TEST(BenchGrid, TheDefaultSweepHasReducedResolutions) {
   EXPECT_GE(reduced["prefiltered half"], 1);
 }
 
+// A scene of several lights: each light's passes summed (its light_sum too), the shared ones apart;
+// a row of one light (no "lightI/" passes) is not listed, and without such rows there is no table.
+TEST(BenchReport, PerLightCostSumsEachLightsPasses) {
+  Row several = row("street", "epipolar", "x", 4.0, 100.0, 0.01);
+  several.passMilliseconds = {{"light0/epipolar_march", 1.0}, {"light0/epipolar_unwarp", 0.5},
+                              {"light1/epipolar_march", 2.0}, {"light1/light_sum", 0.25}, {"composite", 0.125}};
+  Row single = row("pillars", "epipolar", "x", 2.0, 100.0, 0.01);
+  single.passMilliseconds = {{"epipolar_march", 1.0}, {"composite", 0.125}};
+  EXPECT_EQ(perLightMarkdown({single}), "");
+  const std::string table = perLightMarkdown({single, several});
+  EXPECT_NE(table.find("| light 0 ms | light 1 ms | shared ms |"), std::string::npos) << table;
+  EXPECT_NE(table.find("| street | 64×36 | 256² | epipolar | `x` | 4.000 | 1.500 | 2.250 | 0.125 |"), std::string::npos)
+      << table;
+  EXPECT_EQ(table.find("| pillars |"), std::string::npos) << table;
+}
+
 }  // namespace
 }  // namespace tyndall::samples::bench

@@ -221,6 +221,54 @@ std::string scheduleText(const std::string& schedule) {
 
 }  // namespace
 
+std::string perLightMarkdown(const std::vector<Row>& rows) {
+  // Light index of a pass named "lightI/…", or -1 for a shared pass.
+  const auto lightOf = [](const std::string& pass) {
+    const std::size_t slash = pass.find('/');
+    if (pass.rfind("light", 0) != 0 || slash == std::string::npos || slash == 5) return -1;
+    int index = 0;
+    for (std::size_t i = 5; i < slash; ++i) {
+      if (pass[i] < '0' || pass[i] > '9') return -1;
+      index = index * 10 + (pass[i] - '0');
+    }
+    return index;
+  };
+  int lights = 0;
+  for (const Row& r : rows) {
+    for (const auto& [pass, ms] : r.passMilliseconds) lights = std::max(lights, lightOf(pass) + 1);
+  }
+  if (lights == 0) return {};
+  std::string out = "| scene | size | map | technique | parameters | ms |";
+  std::string rule = "|---|---|---|---|---|---|";
+  for (int i = 0; i < lights; ++i) {
+    out += " light " + std::to_string(i) + " ms |";
+    rule += "---|";
+  }
+  out += " shared ms |\n" + rule + "---|\n";
+  for (const Row& r : rows) {
+    if (!r.measured) continue;
+    std::vector<double> perLight(static_cast<std::size_t>(lights), 0.0);
+    double shared = 0.0;
+    bool several = false;
+    for (const auto& [pass, ms] : r.passMilliseconds) {
+      const int light = lightOf(pass);
+      if (light >= 0) {
+        perLight[static_cast<std::size_t>(light)] += ms;
+        several = true;
+      } else {
+        shared += ms;
+      }
+    }
+    if (!several) continue;
+    out += "| " + r.scene + " | " + std::to_string(r.width) + "×" + std::to_string(r.height) + " | " +
+           std::to_string(r.shadowMap) + "² | " + r.technique + " | `" + r.parameters + "` | " +
+           format("%.3f", r.totalMilliseconds) + " |";
+    for (double ms : perLight) out += " " + format("%.3f", ms) + " |";
+    out += " " + format("%.3f", shared) + " |\n";
+  }
+  return out;
+}
+
 std::optional<LightClass> lightClassOf(const Row& row) {
   if (row.light == "several") return std::nullopt;
   return row.light == "directional" ? LightClass::Directional : LightClass::Local;
@@ -793,6 +841,11 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   measurements += "## Each profile per scene\n\nAt " + chosenAt + ", each scene with its kind of light's row as the "
                   "profile runs:\n\n" + perScene + "\n";
   measurements += "## Every configuration (median over the scenes)\n" + summariesText + "\n";
+  if (const std::string perLight = perLightMarkdown(rows); !perLight.empty()) {
+    measurements += "## Per light (scenes of several lights)\n\nEach light's passes (`lightI/…`, the light "
+                    "sum of its L_in included), their medians summed, and the passes the lights share (the "
+                    "composite); `ms` is the frame's median.\n\n" + perLight + "\n";
+  }
   measurements += "## Every measurement\n\n" + rowsMarkdown(rows);
   return writeFileWhole((dir / "tradeoffs-measurements.md").string(), measurements, error);
 }

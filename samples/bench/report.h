@@ -130,6 +130,11 @@ struct ReportContext {
   std::string measurementsLink = "tradeoffs-measurements.md";
 };
 
+/// Per-light cost of the rows of scenes with several lights (passes named "lightI/…", Stats'
+/// prefix): per row, each light's passes' medians summed, and the shared passes' (the composite).
+/// A Markdown table; empty when no row has per-light passes.
+std::string perLightMarkdown(const std::vector<Row>& rows);
+
 /// The rows and context of an earlier run's results.json (writeReports writes it), so that the
 /// reports can be written again without measuring again (tyndall-bench --from). A file written
 /// before the rows recorded their light takes each scene's from samples/scenes/SCENE.json (run from

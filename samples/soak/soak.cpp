@@ -31,9 +31,10 @@
 namespace tyndall::samples {
 namespace {
 
-// The scenes each frame picks from: every light type, with and without a light-colour texture.
-constexpr std::array<const char*, 5> kScenes = {"pillars", "stained-glass-sun", "spot-lamp", "stained-glass",
-                                                "point-lamp"};
+// The scenes each frame picks from: every light type, with and without a light-colour texture, and
+// translucent occluders (depth-peeled layers; the profiles hand over to the Reference).
+constexpr std::array<const char*, 6> kScenes = {"pillars", "stained-glass-sun", "spot-lamp", "stained-glass",
+                                                "point-lamp", "analytic-glass"};
 // Back buffers an engine may switch between (HDR toggle, a compute or a fragment post-process chain):
 // the format and whether it has STORAGE usage (which picks the composite's compute path).
 struct BackBuffer {

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""Writes the spot-light scenes of thin, many-bladed occluders: samples/scenes/spot-{fan,grille,lattice,foliage,street}.json.
+"""Writes the local-light scenes of thin, many-bladed occluders: samples/scenes/spot-{fan,grille,lattice,foliage,street}.json
+and samples/scenes/point-{fan,cage,street}.json.
 
-Each has a 35-degree spot light whose cone is cut into fine shafts by thin boxes, seen from a
-different place relative to the cone:
+Each spot scene has a 35-degree spot light whose cone is cut into fine shafts by thin boxes, seen
+from a different place relative to the cone:
 
     spot-fan      a ceiling fan's eight thin, pitched blades under the lamp; camera outside the cone
     spot-grille   a grille of thin parallel bars; camera inside the cone, under the grille
@@ -11,10 +12,17 @@ different place relative to the cone:
     spot-street   a street lamp tilted over a railing of thin bars, seen from 60 m: the lit cone is a
                   few dozen pixels and its footprint on the ground a pixel or two high
 
+The point scenes (six shadow maps each) cut a bare bulb's light into shafts in every direction:
+
+    point-fan     the ceiling fan with the bulb just above its blades: they cut shafts downwards
+    point-cage    a lantern: the bulb in a square cage of 24 thin bars between solid top and bottom
+                  plates, so that the light leaves sideways in blades across the floor
+    point-street  spot-street's railing with a bare bulb under a small housing, seen from 60 m
+
 The layout is deterministic: the leaves come from SplitMix64 with a fixed seed (scripts/lib/splitmix.py, so
 the output does not depend on the Python version's random module). Run from anywhere:
 
-    python3 scripts/generate-spot-scenes.py            # rewrites the five scene files
+    python3 scripts/generate-spot-scenes.py            # rewrites the eight scene files
     python3 scripts/generate-spot-scenes.py --check    # exits 1 if a committed file is out of date
 """
 import argparse
@@ -141,8 +149,58 @@ def street():
     }
 
 
+def point_fan():
+    scene = fan()
+    return {
+        "description": "A bare bulb just above a ceiling fan's eight thin, pitched blades: they cut its light "
+                       "into shafts downwards, while it shines freely upwards; the camera is outside, looking up "
+                       "at the fan.",
+        "camera": '{"position": [6.5, 2.2, 8], "target": [0, 4.5, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 60, "near": 0.1, "far": 80}',
+        "light": '{"type": "point", "position": [0, 6.5, 0], "color": [1.0, 0.9, 0.75], "intensity": 40}',
+        "objects": scene["objects"],
+    }
+
+
+def cage():
+    # A square cage 1.2 wide: 7 bars per side (0.04 thick, 0.2 apart, the corners shared: 24 bars),
+    # 1.6 tall, between solid plates, around the bulb at its centre.
+    places = []
+    for i in range(7):
+        o = round(-0.6 + 0.2 * i, 4)
+        for place in ((o, -0.6), (o, 0.6), (-0.6, o), (0.6, o)):
+            if place not in places:
+                places.append(place)
+    objects = [box([x, 2.5, z], [0.02, 0.8, 0.02]) for x, z in places]
+    objects += [box([0, 3.33, 0], [0.66, 0.03, 0.66]), box([0, 1.67, 0], [0.66, 0.03, 0.66]),
+                box([0, 0.83, 0], [0.05, 0.83, 0.05]),  # the stand
+                box([2.6, 0.5, -1.5], [0.5, 0.5, 0.5], [0, 30, 0], [0.7, 0.35, 0.2]),
+                {"type": "sphere", "center": [-2.2, 0.6, 1.8], "radius": 0.6, "albedo": [0.2, 0.4, 0.7]}]
+    return {
+        "description": "A lantern: a bare bulb in a square cage of thin bars between solid top and bottom "
+                       "plates, on a stand; the light leaves sideways in blades across the floor and the "
+                       "medium. The camera is outside, a few metres off.",
+        "camera": '{"position": [7, 1.6, 6], "target": [0, 2.0, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 60, "near": 0.1, "far": 80}',
+        "light": '{"type": "point", "position": [0, 2.5, 0], "color": [1.0, 0.85, 0.6], "intensity": 30}',
+        "objects": objects,
+    }
+
+
+def point_street():
+    scene = street()
+    return {
+        "description": "spot-street's railing and post with a bare bulb under a small housing, seen from 60 m "
+                       "along the street: the lit volume is a few dozen pixels wide.",
+        "camera": '{"position": [25, 1.7, 55], "target": [0, 2.5, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 50, "near": 0.1, "far": 400}',
+        "light": '{"type": "point", "position": [0, 5, 0], "color": [1.0, 0.85, 0.6], "intensity": 120}',
+        "objects": scene["objects"],
+    }
+
+
 SCENES = {"spot-fan": fan, "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage,
-          "spot-street": street}
+          "spot-street": street, "point-fan": point_fan, "point-cage": cage, "point-street": point_street}
 
 
 def scene_text(scene):

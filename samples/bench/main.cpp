@@ -21,8 +21,8 @@ const char* const kUsage =
     "       tyndall-bench --from RESULTS.json [--choose-at WxH/N] [--out DIR] [--measurements-link PATH]\n"
     "  --scenes: names in samples/scenes/ or scene files (default: the directional pillars,fence,forest,\n"
     "            window-room, the spot spot-lamp,stained-glass,spot-fan,spot-grille,spot-lattice,spot-foliage,\n"
-    "            spot-street, the point point-lamp and street-dusk's several lights: a profile row is chosen over every\n"
-    "            scene of its kind of light)\n"
+    "            spot-street, the point point-lamp,point-fan,point-cage,point-street and street-dusk's several lights:\n"
+    "            a profile row is chosen over every scene of its kind of light)\n"
     "  --sizes / --shadow-maps: output sizes and shadow-map sizes (default 640x360 / 2048)\n"
     "  --grid: the built-in configurations (default: default; full: more); --config adds one: epipolar:KEY=VALUE,...\n"
     "          or prefiltered:KEY=VALUE,... in tyndall-render's --epipolar / --prefiltered syntax\n"
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> scenes{
       "pillars", "fence", "forest", "window-room",  // directional
       "spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice", "spot-foliage", "spot-street",  // spot
-      "point-lamp",   // point
+      "point-lamp", "point-fan", "point-cage", "point-street",  // point
       "street-dusk"};  // several lights: in the tables over every scene, in no kind's choice
   context.commandLine = "tyndall-bench";
   for (int i = 1; i < argc; ++i) context.commandLine += std::string(" ") + argv[i];

@@ -42,8 +42,8 @@ for part in ${PARTS:-tradeoffs epipolar prefiltered cost}; do
   start=$SECONDS
   case "$part" in
     tradeoffs)
-      read -r -a sizes <<<"${TRADEOFF_SIZES:-1920x1080 3840x2160}"; sizes=(${sizes[@]//,/ })
-      [ "${#sizes[@]}" -gt 0 ] || sizes=(1920x1080 3840x2160)
+      sizes_text="${TRADEOFF_SIZES:-1920x1080 3840x2160}"
+      read -r -a sizes <<<"${sizes_text//,/ }"
       for i in "${!sizes[@]}"; do
         size="${sizes[$i]}"
         args=(--sizes "$size" --shadow-maps 2048 --frames "$frames" --out "$out/tradeoffs-$size")

@@ -222,38 +222,28 @@ std::string scheduleText(const std::string& schedule) {
 }  // namespace
 
 std::string perLightMarkdown(const std::vector<Row>& rows) {
-  // Light index of a pass named "lightI/…", or -1 for a shared pass.
-  const auto lightOf = [](const std::string& pass) {
-    const std::size_t slash = pass.find('/');
-    if (pass.rfind("light", 0) != 0 || slash == std::string::npos || slash == 5) return -1;
-    int index = 0;
-    for (std::size_t i = 5; i < slash; ++i) {
-      if (pass[i] < '0' || pass[i] > '9') return -1;
-      index = index * 10 + (pass[i] - '0');
-    }
-    return index;
-  };
-  int lights = 0;
+  std::size_t lights = 0;
   for (const Row& r : rows) {
-    for (const auto& [pass, ms] : r.passMilliseconds) lights = std::max(lights, lightOf(pass) + 1);
+    for (const auto& [pass, ms] : r.passMilliseconds) {
+      if (const std::optional<std::size_t> light = passLight(pass)) lights = std::max(lights, *light + 1);
+    }
   }
   if (lights == 0) return {};
   std::string out = "| scene | size | map | technique | parameters | ms |";
   std::string rule = "|---|---|---|---|---|---|";
-  for (int i = 0; i < lights; ++i) {
+  for (std::size_t i = 0; i < lights; ++i) {
     out += " light " + std::to_string(i) + " ms |";
     rule += "---|";
   }
   out += " shared ms |\n" + rule + "---|\n";
   for (const Row& r : rows) {
     if (!r.measured) continue;
-    std::vector<double> perLight(static_cast<std::size_t>(lights), 0.0);
+    std::vector<double> perLight(lights, 0.0);
     double shared = 0.0;
     bool several = false;
     for (const auto& [pass, ms] : r.passMilliseconds) {
-      const int light = lightOf(pass);
-      if (light >= 0) {
-        perLight[static_cast<std::size_t>(light)] += ms;
+      if (const std::optional<std::size_t> light = passLight(pass)) {
+        perLight[*light] += ms;
         several = true;
       } else {
         shared += ms;

@@ -318,6 +318,18 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
   return renderSceneWith(device, scene, options, wantAovs, &effect, result, error);
 }
 
+std::optional<std::size_t> passLight(const std::string& pass) {
+  constexpr std::size_t kDigits = 5;  // after "light"
+  const std::size_t slash = pass.find('/');
+  if (pass.rfind("light", 0) != 0 || slash == std::string::npos || slash == kDigits) return std::nullopt;
+  std::size_t index = 0;
+  for (std::size_t i = kDigits; i < slash; ++i) {
+    if (pass[i] < '0' || pass[i] > '9') return std::nullopt;
+    index = index * 10 + static_cast<std::size_t>(pass[i] - '0');
+  }
+  return index;
+}
+
 std::string timingsJson(const RenderOptions& options, const RenderResult& result) {
   std::map<std::string, std::vector<double>> perPass;
   std::vector<double> totals;
@@ -360,10 +372,8 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   if (result.stats.lights.size() > 1) {
     std::vector<double> perLight(result.stats.lights.size(), 0.0);
     for (const auto& [name, ms] : passes.items()) {
-      const std::size_t slash = name.find('/');
-      if (name.rfind("light", 0) != 0 || slash == std::string::npos) continue;
-      const std::size_t light = std::stoul(name.substr(5, slash - 5));
-      if (light < perLight.size()) perLight[light] += ms.get<double>();
+      const std::optional<std::size_t> light = passLight(name);
+      if (light && *light < perLight.size()) perLight[*light] += ms.get<double>();
     }
     json["lightMilliseconds"] = perLight;
   }

@@ -90,6 +90,10 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
 bool renderScene(host::Device& device, const host::Scene& scene, const RenderOptions& options, bool wantAovs,
                  TyndallEffect& effect, RenderResult& result, std::string& error);
 
+/// The light a pass belongs to in a frame of several lights, whose passes the context names
+/// "lightI/…" (I the light's index); none for a shared pass (the composite, the AOV copies).
+std::optional<std::size_t> passLight(const std::string& pass);
+
 /// Median per pass and of the total over the timed frames, as JSON text.
 std::string timingsJson(const RenderOptions& options, const RenderResult& result);
 

@@ -4,7 +4,8 @@
 #                3840x2160), each run's results.json kept as tradeoffs-WxH-results.json as soon as it
 #                ends: docs/TRADEOFFS-H200.md comes from the first size's, written again here (with the
 #                plots, which need matplotlib) by FROM=$GPU_OUT/keep/tradeoffs-1920x1080-results.json
-#                DOC=docs/TRADEOFFS-H200.md scripts/measure.sh tradeoffs. With TRADEOFFS_BUDGET_S the
+#                DOC=docs/TRADEOFFS-H200.md scripts/measure.sh tradeoffs (the profile table's data, then:
+#                docs/data/profile-table-*.json, plugin/src/profiles.cpp). With TRADEOFFS_BUDGET_S the
 #                part stops within that many seconds: every size but the last gets at most 60% of what
 #                is left, the last all of it; a run stopped keeps the scenes it finished (the bench
 #                rewrites its results after each scene) and the log says how many.

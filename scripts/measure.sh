@@ -14,17 +14,20 @@ tradeoffs    tyndall-bench's default sweep (every sample scene but the analytic 
              grid of the epipolar and prefiltered techniques, against the Reference and the floor
              pass), then its plots (scripts/plot-pareto.py, matplotlib); copies the document and
              plots into docs/ and its tables into docs/measurements/tradeoffs-lavapipe.md (for
-             DOC=docs/TRADEOFFS-NAME.md: tradeoffs-name.md), and for docs/TRADEOFFS.md its choice to
-             docs/data/tradeoffs-lavapipe-choice.json (the profile table's test reads it).
+             DOC=docs/TRADEOFFS-NAME.md: tradeoffs-name.md); for the profile table's document
+             (docs/TRADEOFFS-H200.md: the table comes from a GPU's sweep) its choice and rows to
+             docs/data/profile-table-{choice,results}.json (the profile table's test reads them), for
+             docs/TRADEOFFS.md its rows to docs/data/tradeoffs-lavapipe-results.json.
              SIZES (1280x720: where users run it), SHADOW_MAPS (2048), FRAMES (20), SCENES (the bench's default),
              BENCH_OUT (out/tradeoffs); FROM=RESULTS.json writes the document again from an earlier
              run without measuring (FROM=docs/data/tradeoffs-lavapipe-results.json: the run
              docs/TRADEOFFS.md shows); KEEP_FROM=RESULTS.json measures only SCENES and takes the
              other scenes' rows from that earlier run (every scene of a kind of light must be
              measured again together: a profile row is chosen over its kind's scenes; the run's
-             results.json is then the merged file); DOC (docs/TRADEOFFS.md, whose choice is the code's profile
-             table; another path keeps another device's run beside it, e.g.
-             DOC=docs/TRADEOFFS-H200.md); PYTHON (the first python3 on PATH with matplotlib).
+             results.json is then the merged file); DOC (docs/TRADEOFFS.md, lavapipe's; another path
+             keeps another device's run beside it: docs/TRADEOFFS-H200.md, whose choice is the
+             code's profile table, FROM=docs/data/profile-table-results.json writes it again);
+             PYTHON (the first python3 on PATH with matplotlib).
              On a GPU pass SIZES=1920x1080 SHADOW_MAPS=2048 for the issue's goals.
 prefiltered  The prefiltered technique against the Reference: per storage variant and scene the
              relative RMSE of L_in, each pass's GPU time and the speedup over the Reference, then
@@ -110,15 +113,23 @@ part_tradeoffs() {
   fi
   "$python" scripts/plot-pareto.py "$out/pareto.json" "$out" >/dev/null
   cp "$out/tradeoffs-measurements.md" "docs/measurements/$tables"
-  if [ "$doc" = docs/TRADEOFFS.md ]; then
+  # The profile table comes from the GPU's sweep where users run it (plugin/src/profiles.cpp).
+  local table_doc=docs/TRADEOFFS-H200.md
+  if [ "$doc" = "$table_doc" ]; then
     cp "$out/tradeoffs.md" "$doc"
-    cp "$out/choice.json" docs/data/tradeoffs-lavapipe-choice.json
-    cp "$out/results.json" docs/data/tradeoffs-lavapipe-results.json  # the run shown, for FROM and KEEP_FROM
+    cp "$out/choice.json" docs/data/profile-table-choice.json
+    # The run shown, for FROM and KEEP_FROM (the same file when FROM is it).
+    if [ -z "${FROM:-}" ] || [ "$(realpath -m "$FROM")" != "$(realpath -m docs/data/profile-table-results.json)" ]; then
+      cp "$out/results.json" docs/data/profile-table-results.json
+    fi
   else
     # Another device's or size's run: its choice is a measurement, not the code's profile table.
     { head -n 1 "$out/tradeoffs.md"
-      printf '\n> A run on another device or size than docs/TRADEOFFS.md, kept for its measurements: its "choice" is what this run would pick, not `plugin/src/profiles.cpp`'"'"'s table (docs/TRADEOFFS.md is). Written by `DOC=%s scripts/measure.sh tradeoffs` (with `FROM=results.json` of a run on that device, or run there with SIZES and SHADOW_MAPS).\n' "$doc"
+      printf '\n> A run on another device or size than %s, kept for its measurements: its "choice" is what this run would pick, not `plugin/src/profiles.cpp`'"'"'s table (%s is). Written by `DOC=%s scripts/measure.sh tradeoffs` (with `FROM=results.json` of a run on that device, or run there with SIZES and SHADOW_MAPS).\n' "$table_doc" "$table_doc" "$doc"
       tail -n +2 "$out/tradeoffs.md"; } >"$doc"
+    if [ "$doc" = docs/TRADEOFFS.md ] && [ -z "${FROM:-}" ]; then
+      cp "$out/results.json" docs/data/tradeoffs-lavapipe-results.json  # the run shown, for FROM and KEEP_FROM
+    fi
   fi
   cp "$out"/pareto-*.svg "$out"/pareto-*.png docs/
   echo "wrote $doc, docs/measurements/$tables and docs/pareto-*.svg/.png from $out"

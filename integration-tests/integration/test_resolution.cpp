@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "profiles.h"
 #include "test_support.h"
 
 namespace tyndall::test {
@@ -215,6 +216,85 @@ TEST(ReducedResolutionStats, OutputsSmallerThanABlock) {
       for (float v : result.scattering.pixels) ASSERT_TRUE(std::isfinite(v)) << where;
     }
   }
+  expectNoValidationMessages();
+}
+
+// The settings' floor on the target's rows (minimumRows): a reduced resolution whose target would
+// have fewer rows runs at the next finer one, rendering exactly what that resolution asked
+// directly renders, and the stats say why; FrameDesc::resolution has no floor. At 96×54 a quarter
+// target has 14 rows, a half one 27.
+TEST(ReducedResolutionFloor, SmallerOutputsRunFiner) {
+  const host::Scene scene = loadTestScene("analytic-spheres");
+  for (Technique technique : {Technique::Epipolar, Technique::Prefiltered}) {
+    const auto render = [&](ScatteringResolution resolution, std::uint32_t minimumRows) {
+      samples::RenderOptions options = optionsFor(technique, resolution);
+      options.width = 96;
+      options.height = 54;
+      options.shadowMapSize = 256;
+      if (options.epipolar) options.epipolar->minimumRows = minimumRows;
+      if (options.prefiltered) options.prefiltered->minimumRows = minimumRows;
+      return renderWithSharedContext(scene, options);
+    };
+    const std::string name = to_string(technique);
+    const samples::RenderResult quarter = render(ScatteringResolution::Quarter, 14);
+    EXPECT_EQ(quarter.stats.scatteringResolution, ScatteringResolution::Quarter) << name;
+    EXPECT_EQ(quarter.stats.resolutionChange, ResolutionChange::None) << name;
+    const samples::RenderResult toHalf = render(ScatteringResolution::Quarter, 15);
+    const samples::RenderResult half = render(ScatteringResolution::Half, 0);
+    EXPECT_EQ(toHalf.stats.scatteringResolution, ScatteringResolution::Half) << name;
+    EXPECT_EQ(toHalf.stats.resolutionChange, ResolutionChange::BelowMinimumRows) << name;
+    EXPECT_NE(toHalf.stats.techniqueNote.find("fewer target rows than minimumRows"), std::string::npos)
+        << toHalf.stats.techniqueNote;
+    EXPECT_EQ(toHalf.scattering.pixels, half.scattering.pixels) << name;
+    const samples::RenderResult toFull = render(ScatteringResolution::Quarter, 28);
+    const samples::RenderResult full = render(ScatteringResolution::Full, 0);
+    EXPECT_EQ(toFull.stats.scatteringResolution, ScatteringResolution::Full) << name;
+    EXPECT_EQ(toFull.stats.resolutionChange, ResolutionChange::BelowMinimumRows) << name;
+    EXPECT_EQ(toFull.scattering.pixels, full.scattering.pixels) << name;
+    EXPECT_NE(quarter.scattering.pixels, half.scattering.pixels) << name;
+    // The frame's own resolution is the engine's explicit choice: no floor.
+    samples::RenderOptions options = optionsFor(technique, ScatteringResolution::Full);
+    options.width = 96;
+    options.height = 54;
+    options.shadowMapSize = 256;
+    if (options.epipolar) options.epipolar->minimumRows = 1000;
+    if (options.prefiltered) options.prefiltered->minimumRows = 1000;
+    options.resolution = ScatteringResolution::Quarter;
+    const samples::RenderResult asked = renderWithSharedContext(scene, options);
+    EXPECT_EQ(asked.stats.scatteringResolution, ScatteringResolution::Quarter) << name;
+    EXPECT_EQ(asked.stats.resolutionChange, ResolutionChange::None) << name;
+  }
+  expectNoValidationMessages();
+}
+
+// The profiles' rows at reduced resolution (plugin/src/profiles.cpp) run it at the output height
+// they were chosen at and finer below, as resolutionForRows says; a directional light, whose
+// shafts have no lamp image to keep at full resolution.
+TEST(ReducedResolutionFloor, TheProfilesKeepTheirRowsRows) {
+  const host::Scene scene = loadTestScene("pillars");
+  std::uint32_t reducedRuns = 0;
+  for (Profile profile : {Profile::High, Profile::Balanced, Profile::Performance}) {
+    const EpipolarSettings& row = profileChoice(profile, LightClass::Directional).epipolar;
+    for (std::uint32_t height : {1080u, 720u}) {
+      samples::RenderOptions options;
+      options.profile = profile;
+      options.width = 48;
+      options.height = height;
+      options.shadowMapSize = 256;
+      options.pipelineCreation = PipelineCreation::OnFirstUse;
+      const samples::RenderResult result = renderWithSharedContext(scene, options);
+      const ScatteringResolution expected = resolutionForRows(row.resolution, row.minimumRows, height);
+      const std::string where = std::string(to_string(profile)) + " at 48x" + std::to_string(height);
+      EXPECT_EQ(result.stats.technique, Technique::Epipolar) << where;
+      EXPECT_EQ(result.stats.scatteringResolution, expected) << where;
+      EXPECT_EQ(result.stats.resolutionChange,
+                expected == row.resolution ? ResolutionChange::None : ResolutionChange::BelowMinimumRows)
+          << where;
+      if (expected != ScatteringResolution::Full) ++reducedRuns;
+    }
+  }
+  // The table's GPU rows run reduced at 1080 rows (Balanced at half, Performance at quarter).
+  EXPECT_GT(reducedRuns, 0u);
   expectNoValidationMessages();
 }
 

@@ -295,14 +295,14 @@ TEST(BenchReport, TheProfilesAsTheyRunAreTheTablesRows) {
   context.chooseWidth = 64;
   context.chooseHeight = 36;
   context.chooseShadowMap = 256;
-  context.incumbents = {{LightClass::Directional, {{Profile::High, "epipolar table"}}}};
+  context.incumbents = Incumbents{{LightClass::Directional, {{Profile::High, "epipolar table"}}}};
   // 100× past the margin and twice as accurate: the choice replaces the table's row for High...
   const std::vector<Summary> s = summarize(rows, 64, 36, 256, LightClass::Directional);
-  EXPECT_EQ(s[*chooseProfiles(s, context.incumbents[LightClass::Directional])[0].summary].parameters, "challenger");
+  EXPECT_EQ(s[*chooseProfiles(s, context.incumbents->at(LightClass::Directional))[0].summary].parameters, "challenger");
   // ...but High as it runs is the table's row.
   EXPECT_EQ(highAsItRuns(context), "epipolar table");
   // Without the table's row in the run, the run's choice.
-  context.incumbents = {{LightClass::Directional, {{Profile::High, "epipolar not-measured"}}}};
+  context.incumbents = Incumbents{{LightClass::Directional, {{Profile::High, "epipolar not-measured"}}}};
   EXPECT_EQ(highAsItRuns(context), "epipolar challenger");
 }
 

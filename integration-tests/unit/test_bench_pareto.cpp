@@ -116,7 +116,7 @@ nlohmann::json writtenParetoJson(const std::vector<Row>& rows) {
   context.chooseWidth = 64;
   context.chooseHeight = 36;
   context.chooseShadowMap = 256;
-  context.incumbents = {};
+  context.incumbents = Incumbents{};
   const std::filesystem::path dir = tyndall::test::scratchPath("pareto-json");
   std::string error;
   EXPECT_TRUE(writeReports(rows, context, dir.string(), error)) << error;

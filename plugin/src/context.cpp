@@ -614,7 +614,9 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   // frame without one keeps the current target.
   stats.resolutionChange = ResolutionChange::None;
   if (leadTechnique != nullptr) {
-    ScatteringResolution wanted = leadTechnique->resolution(runs.front().frame, choice);
+    const ResolutionRequest asked = leadTechnique->resolution(runs.front().frame, choice);
+    ScatteringResolution wanted = resolutionForRows(asked.resolution, asked.minimumRows, extent.height);
+    if (wanted != asked.resolution) stats.resolutionChange = ResolutionChange::BelowMinimumRows;
     if (wanted != ScatteringResolution::Full && localLightImageNearView(setup, extent, wanted)) {
       wanted = ScatteringResolution::Full;
       stats.resolutionChange = ResolutionChange::LocalLightInView;
@@ -655,6 +657,10 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     if (stats.resolutionChange == ResolutionChange::LocalLightInView) {
       note += "; L_in at full resolution: a spot or point light's image is in view (its peak would spread over the "
               "upsampling blocks)";
+    }
+    if (stats.resolutionChange == ResolutionChange::BelowMinimumRows) {
+      note += std::string("; L_in at ") + to_string(resolution) +
+              " resolution: the output is too small for the one asked (fewer target rows than minimumRows)";
     }
   }
   if (lightCount > 1) {

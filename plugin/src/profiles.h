@@ -35,6 +35,20 @@ struct ProfileChoice {
   PrefilteredSettings prefiltered{};
 };
 
+/// The resolution L_in runs at for an output of `outputHeight` rows when `asked` comes with a
+/// floor of `minimumRows` (EpipolarSettings::minimumRows): `asked`, or the next finer one while
+/// its target would have fewer rows (Full always runs).
+constexpr ScatteringResolution resolutionForRows(ScatteringResolution asked, std::uint32_t minimumRows,
+                                                 std::uint32_t outputHeight) {
+  ScatteringResolution r = asked;
+  while (r != ScatteringResolution::Full) {
+    const auto stride = static_cast<std::uint32_t>(r);
+    if ((outputHeight + stride - 1) / stride >= minimumRows) break;
+    r = r == ScatteringResolution::Quarter ? ScatteringResolution::Half : ScatteringResolution::Full;
+  }
+  return r;
+}
+
 /// The row for a profile and a kind of light (the context resolves Auto to High, Balanced or
 /// Performance first).
 const ProfileChoice& profileChoice(Profile profile, LightClass lights);

@@ -70,6 +70,7 @@ const char* to_string(ResolutionChange change) noexcept {
   switch (change) {
     case ResolutionChange::None: return "none";
     case ResolutionChange::LocalLightInView: return "local-light-in-view";
+    case ResolutionChange::BelowMinimumRows: return "below-minimum-rows";
   }
   return "unknown";
 }

@@ -26,6 +26,12 @@ constexpr VkExtent2D targetExtentFor(VkExtent2D output, ScatteringResolution res
   return {(output.width + stride - 1) / stride, (output.height + stride - 1) / stride};
 }
 
+/// A technique's L_in resolution and the fewest target rows it runs with (resolutionForRows).
+struct ResolutionRequest {
+  ScatteringResolution resolution = ScatteringResolution::Full;
+  std::uint32_t minimumRows = 0;
+};
+
 /// What every technique is created with.
 struct TechniqueResources {
   VkSampler nearest = VK_NULL_HANDLE;  ///< nearest, clamp to edge
@@ -68,10 +74,11 @@ class ScatteringTechnique {
 
   /// Size-independent resources: layouts, descriptor sets, constant buffers (no pipeline).
   virtual Outcome create(const Gpu& gpu, const TechniqueResources& resources) = 0;
-  /// The resolution of the frame's L_in target: FrameDesc::resolution, else FrameDesc's settings',
-  /// else the profile row's; full by default (the Reference).
-  [[nodiscard]] virtual ScatteringResolution resolution(const FrameDesc& /*frame*/, const ProfileChoice& /*choice*/) const {
-    return ScatteringResolution::Full;
+  /// The resolution asked for the frame's L_in target: FrameDesc::resolution (no floor), else
+  /// FrameDesc's settings', else the profile row's, with their minimumRows; full by default (the
+  /// Reference).
+  [[nodiscard]] virtual ResolutionRequest resolution(const FrameDesc& /*frame*/, const ProfileChoice& /*choice*/) const {
+    return {};
   }
   /// Records with `owner`'s pipelines from now on, compiling none of its own: an additional light's
   /// instance needs its own descriptor sets, buffers and textures, not its own pipelines. `owner`,

@@ -333,22 +333,27 @@ const ProfileGoal* profileGoal(Profile profile) {
   return it != goals.end() ? &*it : nullptr;
 }
 
-std::map<Profile, std::string> profileTableConfigurations(LightClass lights) {
+std::map<Profile, std::string> profileTableConfigurations(LightClass lights, std::uint32_t outputHeight) {
+  const auto asRun = [&](auto settings) {
+    settings.resolution = resolutionForRows(settings.resolution, settings.minimumRows, outputHeight);
+    settings.minimumRows = 0;
+    return settings;
+  };
   std::map<Profile, std::string> out;
   for (const ProfileGoal& goal : profileGoals()) {
     const ProfileChoice& row = profileChoice(goal.profile, lights);
     Configuration c;
     c.technique = row.technique;
-    if (row.technique == Technique::Epipolar) c.epipolar = row.epipolar;
-    if (row.technique == Technique::Prefiltered) c.prefiltered = row.prefiltered;
+    if (row.technique == Technique::Epipolar) c.epipolar = asRun(row.epipolar);
+    if (row.technique == Technique::Prefiltered) c.prefiltered = asRun(row.prefiltered);
     out[goal.profile] = c.name();
   }
   return out;
 }
 
-std::map<LightClass, std::map<Profile, std::string>> profileTableConfigurations() {
-  return {{LightClass::Directional, profileTableConfigurations(LightClass::Directional)},
-          {LightClass::Local, profileTableConfigurations(LightClass::Local)}};
+Incumbents profileTableConfigurations(std::uint32_t outputHeight) {
+  return {{LightClass::Directional, profileTableConfigurations(LightClass::Directional, outputHeight)},
+          {LightClass::Local, profileTableConfigurations(LightClass::Local, outputHeight)}};
 }
 
 std::vector<ProfileChoiceResult> chooseProfiles(const std::vector<Summary>& summaries,
@@ -566,6 +571,7 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
       classes.push_back(lights);
     }
   }
+  const Incumbents table = context.incumbents ? *context.incumbents : profileTableConfigurations(context.chooseHeight);
   // The choice per kind of light among that kind's summaries.
   struct ClassChoice {
     LightClass lights;
@@ -576,10 +582,9 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
     std::vector<ClassChoice> out;
     for (LightClass lights : classes) {
       ClassChoice c{lights, summarize(rows, w, h, map, lights), {}};
-      const auto incumbents = context.incumbents.find(lights);
-      c.choice = chooseProfiles(c.summaries, incumbents != context.incumbents.end()
-                                                 ? incumbents->second
-                                                 : std::map<Profile, std::string>{});
+      const auto incumbents = table.find(lights);
+      c.choice = chooseProfiles(c.summaries, incumbents != table.end() ? incumbents->second
+                                                                        : std::map<Profile, std::string>{});
       for (ProfileChoiceResult& r : c.choice) r.lights = lights;
       out.push_back(std::move(c));
     }
@@ -664,10 +669,10 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
   // Its medians over every scene are what the goals are stated for.
   // The kind's summaries are its configurations measured at the choice's size.
   const auto asItRuns = [&](const ClassChoice& byClass, Profile profile, const Summary& chosen) {
-    const auto table = context.incumbents.find(byClass.lights);
-    if (table == context.incumbents.end()) return chosen.configuration;
-    const auto row = table->second.find(profile);
-    const bool measured = row != table->second.end() &&
+    const auto tableRows = table.find(byClass.lights);
+    if (tableRows == table.end()) return chosen.configuration;
+    const auto row = tableRows->second.find(profile);
+    const bool measured = row != tableRows->second.end() &&
                           std::any_of(byClass.summaries.begin(), byClass.summaries.end(),
                                       [&](const Summary& s) { return s.configuration == row->second; });
     return measured ? row->second : chosen.configuration;
@@ -808,7 +813,10 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
          "goals, a challenger must be " + format("%.0f%%", 100.0 * kChallengerErrorMargin) +
          " more accurate (median relative RMSE), so that the table does not trade speed for a negligible gain. "
          "`plugin/src/profiles.cpp` holds this table; "
-         "`TradeoffsDocument.AgreesWithTheProfileTable` checks that they agree.\n\n";
+         "`TradeoffsDocument.AgreesWithTheProfileTable` checks that they agree. A row at reduced resolution "
+         "keeps the L_in rows it has at the size it was chosen at (`EpipolarSettings::minimumRows`): a smaller "
+         "output runs it at a finer resolution, whose error this size does not measure; the incumbents are "
+         "the rows as they run at this size.\n\n";
   doc += choiceTable + "\n";
   doc += "Each profile as it runs (every scene with its kind of light's row of the profile table, "
          "`plugin/src/profiles.cpp`, or this run's choice where the run did not measure that row), against the "

@@ -100,10 +100,13 @@ inline constexpr double kChallengerSpeedMargin = 0.25;
 inline constexpr double kChallengerErrorMargin = 0.10;
 
 /// The configuration (Summary::configuration, e.g. "epipolar slices=128,samples=128") each profile
-/// holds for a kind of light in plugin/src/profiles.cpp's table: the incumbents of the choice.
-std::map<Profile, std::string> profileTableConfigurations(LightClass lights);
-/// Both kinds' (ReportContext::incumbents).
-std::map<LightClass, std::map<Profile, std::string>> profileTableConfigurations();
+/// of plugin/src/profiles.cpp's table runs for a kind of light at an output of `outputHeight` rows:
+/// the row with its resolution floor applied (resolutionForRows) and dropped, so that it names
+/// what the sweep measures at that size. The incumbents of the choice.
+std::map<Profile, std::string> profileTableConfigurations(LightClass lights, std::uint32_t outputHeight);
+using Incumbents = std::map<LightClass, std::map<Profile, std::string>>;
+/// Both kinds'.
+Incumbents profileTableConfigurations(std::uint32_t outputHeight);
 
 /// Per profile (profileGoals()), of the configurations that meet its per-scene bar and its speed
 /// goals, the most accurate. When the profile's incumbent (`incumbents`, e.g.
@@ -124,8 +127,9 @@ struct ReportContext {
   /// bench recorded it, which measured each configuration's frames in a row.
   std::string schedule;
   double orbitDegreesPerFrame = 0.0;
-  /// The configurations the profile table holds per kind of light (chooseProfiles' incumbents).
-  std::map<LightClass, std::map<Profile, std::string>> incumbents = profileTableConfigurations();
+  /// chooseProfiles' incumbents per kind of light; unset: the profile table's rows as they run at
+  /// chooseHeight (profileTableConfigurations).
+  std::optional<Incumbents> incumbents;
   /// Where tradeoffs.md links tradeoffs-measurements.md, relative to where tradeoffs.md ends up.
   std::string measurementsLink = "tradeoffs-measurements.md";
 };

@@ -104,13 +104,13 @@ void append(std::string& out, const std::string& key, const std::string& value) 
 const char* const kEpipolarKeys =
     "slices, samples, improved-placement (0|1), initial-step, refinement, intensity-refinement, density, tree (0|1), "
     "max-tree-step, bilateral, fixup-weight, slice-contrast, epipole-radius, epipole-fraction, fixup-steps, colored-step, "
-    "resolution (full|half|quarter)";
+    "resolution (full|half|quarter), min-rows";
 const char* const kPrefilteredKeys =
     "basis (moments4_64|moments4_128|moments6_64|moments6_96|moments6_192|fourier32), "
     "rectification (automatic|non-linear|projective), rows, columns, filtered (0|1), "
     "spacing (mean-theta|reference-ray|fastest-ray), taps, prefix-sums (row-parallel|thread-per-row|workgroup-scan), "
     "beta (adaptive|a number in [0, 1]), epipole-block, short-rays, depth-bounds (0|1), segments (0|1), trim (0|1), "
-    "texel-walk, resolution (full|half|quarter)";
+    "texel-walk, resolution (full|half|quarter), min-rows";
 
 bool parseUint(const std::string& text, std::uint32_t minimum, std::uint32_t maximum, std::uint32_t& out) {
   std::uint32_t value = 0;
@@ -136,6 +136,11 @@ bool parseEpipolarSettings(const std::string& text, EpipolarSettings& out, std::
     if (key == "resolution") {
       const bool parsed = pickResolution(value, s.resolution);
       if (!parsed) error = "--epipolar: bad value for resolution (got '" + value + "')";
+      return parsed;
+    }
+    if (key == "min-rows") {
+      const bool parsed = parseUint(value, 0, 1u << 30, s.minimumRows);
+      if (!parsed) error = "--epipolar: bad value for min-rows (got '" + value + "')";
       return parsed;
     }
     const auto field = std::find_if(kEpipolarFields.begin(), kEpipolarFields.end(),
@@ -200,6 +205,8 @@ bool parsePrefilteredSettings(const std::string& text, PrefilteredSettings& out,
       s.segmentedReconstruction = u != 0;
     } else if (key == "resolution") {
       parsed = pickResolution(value, s.resolution);
+    } else if (key == "min-rows") {
+      parsed = parseUint(value, 0, 1u << 30, s.minimumRows);
     } else if (key == "trim") {
       parsed = parseUint(value, 0, 1, u);
       s.trimmedSegments = u != 0;
@@ -231,6 +238,7 @@ std::string describe(const EpipolarSettings& settings) {
     }
   }
   if (settings.resolution != defaults.resolution) append(out, "resolution", to_string(settings.resolution));
+  if (settings.minimumRows != defaults.minimumRows) append(out, "min-rows", std::to_string(settings.minimumRows));
   return out.empty() ? "defaults" : out;
 }
 
@@ -259,6 +267,7 @@ std::string describe(const PrefilteredSettings& s) {
   if (s.trimmedSegments != d.trimmedSegments) append(out, "trim", s.trimmedSegments ? "1" : "0");
   if (s.texelWalkSteps != d.texelWalkSteps) append(out, "texel-walk", std::to_string(s.texelWalkSteps));
   if (s.resolution != d.resolution) append(out, "resolution", to_string(s.resolution));
+  if (s.minimumRows != d.minimumRows) append(out, "min-rows", std::to_string(s.minimumRows));
   return out.empty() ? "defaults" : out;
 }
 

@@ -109,15 +109,19 @@ enum class TechniqueChange : std::uint32_t {
 };
 const char* to_string(TechniqueChange change) noexcept;
 
-/// Why L_in ran at full resolution where the frame or the profile asked for less (a design
-/// decision, docs/INTEGRATION.md "Reduced resolution").
+/// Why L_in ran at a finer resolution than the frame or the profile asked for (a design decision,
+/// docs/INTEGRATION.md "Reduced resolution").
 enum class ResolutionChange : std::uint32_t {
   None,              ///< the requested resolution ran
   /// A spot or point light's position projects within 4 target pixels of the view: next to its
   /// image L_in grows as 1/distance from the light and changes many-fold within an upsampling block.
   LocalLightInView,
+  /// The output is too small for the resolution asked: its L_in target would have fewer rows than
+  /// the settings' `minimumRows`, so a finer resolution (possibly still reduced) ran.
+  BelowMinimumRows,
 };
-const char* to_string(ResolutionChange change) noexcept;  ///< "none", "local-light-in-view"
+/// "none", "local-light-in-view", "below-minimum-rows"
+const char* to_string(ResolutionChange change) noexcept;
 
 /// Profile::Auto's estimate of each profile's time: the median of its last measured frames under
 /// Auto, in milliseconds; empty while unmeasured.
@@ -181,7 +185,7 @@ struct Stats {
   CompositePath composite = CompositePath::None;
   /// The resolution L_in was computed at in the last frame (the composite upsampled it below Full).
   ScatteringResolution scatteringResolution = ScatteringResolution::Full;
-  ResolutionChange resolutionChange = ResolutionChange::None;  ///< why it is Full where less was asked
+  ResolutionChange resolutionChange = ResolutionChange::None;  ///< why it is finer than asked
   std::uint32_t dispatches = 0;  ///< compute dispatches (direct and indirect) the last `record` recorded
   std::uint32_t barriers = 0;    ///< pipeline barriers the last `record` recorded
   FrameTimings lastTimings;                     ///< most recent frame whose timestamps were available

@@ -76,6 +76,12 @@ struct EpipolarSettings {
   /// The resolution of the L_in target (slices and samples are unchanged; the unwarp and the
   /// fix-up run per target pixel), upsampled by the composite. Default Full.
   ScatteringResolution resolution = ScatteringResolution::Full;
+  /// A reduced `resolution` runs only while its L_in target keeps at least this many rows; for a
+  /// smaller output the next finer one does (Stats::resolutionChange). The upsample's error grows
+  /// as a block covers more of the scene, so a resolution measured at one output size is not
+  /// accurate enough below it: the profile table sets the rows of the size its row was chosen at.
+  /// 0 (default): no floor.
+  std::uint32_t minimumRows = 0;
 };
 
 /// How a prefiltered shadow map represents the visibility along a light ray (docs/PREFILTERED.md
@@ -190,6 +196,8 @@ struct PrefilteredSettings {
   /// The resolution of the L_in target (the evaluation runs per target pixel), upsampled by the
   /// composite. Default Full.
   ScatteringResolution resolution = ScatteringResolution::Full;
+  /// As EpipolarSettings::minimumRows: the fewest L_in rows a reduced `resolution` runs with.
+  std::uint32_t minimumRows = 0;
 };
 
 const char* to_string(PrefilteredBasis basis) noexcept;

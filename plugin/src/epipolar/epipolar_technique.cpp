@@ -325,9 +325,10 @@ Outcome EpipolarTechnique::prepare(const Gpu& gpu, const FrameInputs& in, Techni
   return {};
 }
 
-ScatteringResolution EpipolarTechnique::resolution(const FrameDesc& frame, const ProfileChoice& choice) const {
-  if (frame.resolution) return *frame.resolution;
-  return frame.epipolar != nullptr ? frame.epipolar->resolution : choice.epipolar.resolution;
+ResolutionRequest EpipolarTechnique::resolution(const FrameDesc& frame, const ProfileChoice& choice) const {
+  if (frame.resolution) return {*frame.resolution, 0};
+  const auto& s = frame.epipolar != nullptr ? *frame.epipolar : choice.epipolar;
+  return {s.resolution, s.minimumRows};
 }
 
 void EpipolarTechnique::readBack(std::uint32_t slot, Stats& stats) {

@@ -55,7 +55,7 @@ class EpipolarTechnique final : public ScatteringTechnique {
   /// Stats::epipolarCounts from the slot's previous epipolar frame.
   void readBack(std::uint32_t slot, Stats& stats) override;
   void releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) override;
-  [[nodiscard]] ScatteringResolution resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
+  [[nodiscard]] ResolutionRequest resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
   [[nodiscard]] bool drawsDebugViews() const override { return true; }
   void destroy(const Gpu& gpu) override;
   /// Drops the fix-up list, which holds every pixel of the L_in target: for a new output extent

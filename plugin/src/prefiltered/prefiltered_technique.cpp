@@ -331,9 +331,10 @@ Outcome PrefilteredTechnique::ensurePipelines(const Gpu& gpu, const FrameDesc& f
   return createPipelines(gpu);
 }
 
-ScatteringResolution PrefilteredTechnique::resolution(const FrameDesc& frame, const ProfileChoice& choice) const {
-  if (frame.resolution) return *frame.resolution;
-  return frame.prefiltered != nullptr ? frame.prefiltered->resolution : choice.prefiltered.resolution;
+ResolutionRequest PrefilteredTechnique::resolution(const FrameDesc& frame, const ProfileChoice& choice) const {
+  if (frame.resolution) return {*frame.resolution, 0};
+  const auto& s = frame.prefiltered != nullptr ? *frame.prefiltered : choice.prefiltered;
+  return {s.resolution, s.minimumRows};
 }
 
 Outcome PrefilteredTechnique::prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) {

@@ -43,7 +43,7 @@ class PrefilteredTechnique final : public ScatteringTechnique {
   void destroy(const Gpu& gpu) override;
   Outcome prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) override;
   void releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) override;
-  [[nodiscard]] ScatteringResolution resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
+  [[nodiscard]] ResolutionRequest resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
   /// Records the passes prepare() chose; each is timed and appended to the target's passes.
   void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
 

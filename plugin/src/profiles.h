@@ -1,7 +1,7 @@
 // The profile table: which technique and parameters each quality profile uses, per kind of light.
-// Data, not code paths (FidelityFX's quality-mode tables); docs/TRADEOFFS.md justifies each row by
-// measurement (scripts/measure.sh tradeoffs) and TradeoffsDocument.AgreesWithTheProfileTable keeps the two
-// equal.
+// Data, not code paths (FidelityFX's quality-mode tables); docs/TRADEOFFS-H200.md justifies each row
+// by measurement on a GPU (scripts/measure-gpu.sh) and TradeoffsDocument.AgreesWithTheProfileTable
+// keeps the two equal.
 #pragma once
 
 #include "tyndall/tuning.h"
@@ -11,9 +11,9 @@ namespace tyndall {
 /// The lights a row of the table is chosen for. A spot light's shafts fill a cone, not the screen,
 /// and its epipolar slices cover only the wedge that can see the cone (epipolar/slice_arc.h), so
 /// the same accuracy costs it different parameters than a directional light; the sweep chooses a
-/// row for each over the scenes of that kind. Point lights take the local row: the sweep has no
-/// point-light scene (its Reference is too slow on a CPU driver for a sweep); on point-lamp that
-/// row meets every profile's goals (docs/EPIPOLAR.md "Spot and point lights").
+/// row for each over the scenes of that kind. Point lights take the local row: their scenes are
+/// measured with the spot scenes (point-lamp in the GPU sweep; the point scenes of thin occluders
+/// in the tests, whose bars that row meets).
 enum class LightClass : std::uint8_t { Directional, Local };
 
 constexpr LightClass lightClassOf(LightType type) {

@@ -938,6 +938,47 @@ TEST(ScatteringLutSpot, ConeIntervalMatchesBruteForce) {
   EXPECT_GT(checked, 1000000);
 }
 
+// The march computes a ray's cone intervals once (tyn_spot_ray) and clips them to each lit section
+// (tyn_spot_ray_segment): the clipped intervals must be the ones tyn_spot_cone_interval finds for
+// the section itself, bit for bit, empty where it is empty, so that hoisting changes no result.
+TEST(ScatteringLutSpot, TheRaysIntervalsClippedAreEachSectionsOwn) {
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::uniform_real_distribution<float> along(-5.0f, 30.0f);
+  int nonEmpty = 0, sections = 0;
+  for (float halfAngle : {0.1f, 0.5f, 1.2f}) {
+    const float cos_outer = std::cos(halfAngle);
+    const float cos_inner = std::cos(0.7f * halfAngle);
+    for (int trial = 0; trial < 2000; ++trial) {
+      const vec3 light = 3.0f * vec3(u(rng), u(rng), u(rng));
+      const vec3 axis = randomUnit(rng);
+      const vec3 origin = 4.0f * vec3(u(rng), u(rng), u(rng));
+      const vec3 dir = trial % 4 == 0 ? normalize(light - origin + 0.05f * randomUnit(rng)) : randomUnit(rng);
+      const TynLightRay r = tyn_light_ray(origin, dir, light);
+      const TynSpotCone cone = tyn_spot_cone(r, dir, axis, cos_outer, cos_inner);
+      const TynSpotRay spot = tyn_spot_ray(r, cone);
+      for (int k = 0; k < 8; ++k) {
+        float ta = std::max(along(rng), 0.0f);
+        const float tb = k == 0 ? ta : ta + std::fabs(along(rng));
+        const vec2 outer = tyn_spot_cone_interval(r, cone, cos_outer, ta, tb);
+        const vec2 clippedOuter(std::max(ta, spot.outer.x), std::min(tb, spot.outer.y));
+        ++sections;
+        ASSERT_EQ(outer.y > outer.x, clippedOuter.y > clippedOuter.x) << "trial " << trial << " section " << k;
+        if (!(outer.y > outer.x)) continue;
+        ++nonEmpty;
+        EXPECT_EQ(outer, clippedOuter) << "trial " << trial << " section " << k;
+        const vec2 inner = tyn_spot_cone_interval(r, cone, cos_inner, outer.x, outer.y);
+        const vec2 clippedInner(std::max(outer.x, spot.inner.x), std::min(outer.y, spot.inner.y));
+        ASSERT_EQ(inner.y > inner.x, clippedInner.y > clippedInner.x) << "trial " << trial << " section " << k;
+        if (inner.y > inner.x) {
+          EXPECT_EQ(inner, clippedInner) << "trial " << trial << " section " << k;
+        }
+      }
+    }
+  }
+  EXPECT_GT(nonEmpty, sections / 10);  // the sections do meet the cones
+}
+
 // Spot segments crossing the penumbra (camera near the cone's surface, looking in every direction
 // and towards the light) against the original integral with the smoothstep falloff; plus the
 // structural cases: a section inside the inner cone is the point light's, one outside is 0, and a

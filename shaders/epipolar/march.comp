@@ -51,6 +51,7 @@ vec4 g_u_of_t;  // (a0, a1, p, q)
 TynMedium g_medium;
 TynLightRay g_light_ray;
 TynSpotCone g_cone;
+TynSpotRay g_spot_ray;
 TynLocalLightRay g_local_ray;
 vec4 g_cuts;
 
@@ -68,7 +69,7 @@ vec3 tyn_march_local_light(float u_a, float u_b) {
   float a = max(min(t_a, t_b), 0.0);
   float b = max(t_a, t_b);
   if (TYN_MARCH_LIGHT_COLOR) return tyn_local_light_segment_cut(g_local_ray, g_cuts, a, b, true);
-  return frame.light_radiance * tyn_spot_segment(g_medium, g_light_ray, g_cone, a, b);
+  return frame.light_radiance * tyn_spot_ray_segment(g_medium, g_light_ray, g_cone, g_spot_ray, a, b);
 }
 
 // The light's mean colour over [a, b] of the slice's line, from the slice's prefix sums.
@@ -106,6 +107,7 @@ vec3 tyn_march_along_slice(int slice, uint map, TynSliceRay sr, vec3 origin, vec
     g_medium = tyn_medium_from_frame();
     g_light_ray = tyn_light_ray(origin, dir, frame.light_position);
     g_cone = tyn_spot_cone_from_frame(g_light_ray, dir);
+    g_spot_ray = tyn_spot_ray(g_light_ray, g_cone);
   }
   if (TYN_MARCH_LIGHT_COLOR && TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL) {
     g_local_ray = tyn_local_light_ray(origin, dir);

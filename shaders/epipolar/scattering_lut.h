@@ -277,16 +277,57 @@ TYN_FUNC vec3 tyn_scattering_lut_segment(TYN_SCATTERING_LUT_ACCESS TynMedium m, 
 
 // S(t_a, t_b) for a spot light over a lit section: the table inside the inner cone, quadrature
 // with the falloff in the penumbra, nothing outside the outer cone.
+// A view ray's intervals inside the spot's outer and inner cones, whole (a cone meets a line in
+// one interval): clipping them to a section gives what tyn_spot_cone_interval gives for it, so a
+// march computes them once per ray instead of twice per lit section.
+struct TynSpotRay {
+  vec2 outer;
+  vec2 inner;
+};
+
+TYN_FUNC TynSpotRay tyn_spot_ray(TynLightRay r, TynSpotCone cone) {
+  const float unbounded = 3.0e38f;
+  TynSpotRay s;
+  s.outer = tyn_spot_cone_interval(r, cone, cone.cos_outer, -unbounded, unbounded);
+  s.inner = tyn_spot_cone_interval(r, cone, cone.cos_inner, -unbounded, unbounded);
+  return s;
+}
+
+TYN_SCATTERING_LUT_TEMPLATE
+TYN_FUNC vec3 tyn_spot_ray_segment(TYN_SCATTERING_LUT_ACCESS TynMedium m, TynLightRay r, TynSpotCone cone,
+                                   TynSpotRay spot, float ta, float tb) {
+  vec2 outer = vec2(max(ta, spot.outer.x), min(tb, spot.outer.y));
+  if (!(outer.y > outer.x)) return vec3(0.0f);
+  vec2 inner = vec2(max(outer.x, spot.inner.x), min(outer.y, spot.inner.y));
+  bool has_inner = inner.y > inner.x;
+  // The penumbra's pieces before and after the inner cone (the whole section without one), each
+  // integrated only when not empty, in one loop: most lit sections lie inside the inner cone and
+  // run no quadrature, and where SIMD lanes run both sides of a branch (a CPU driver) the lanes
+  // share one loop instead of three calls.
+  vec2 before = has_inner ? vec2(outer.x, inner.x) : outer;
+  vec2 after = has_inner ? vec2(inner.y, outer.y) : vec2(0.0f);
+  bool needs_before = before.y > before.x;
+  int count = (needs_before ? 1 : 0) + (after.y > after.x ? 1 : 0);
+  vec3 q_before = vec3(0.0f);
+  vec3 q_after = vec3(0.0f);
+  for (int i = 0; i < count; ++i) {
+    bool is_before = i == 0 && needs_before;
+    vec2 piece = is_before ? before : after;
+    vec3 q = tyn_local_light_quadrature(m, r, cone, true, piece.x, piece.y);
+    if (is_before) {
+      q_before = q;
+    } else {
+      q_after = q;
+    }
+  }
+  if (!has_inner) return q_before;
+  return q_before + tyn_scattering_lut_segment(TYN_SCATTERING_LUT_PASS m, r, inner.x, inner.y) + q_after;
+}
+
 TYN_SCATTERING_LUT_TEMPLATE
 TYN_FUNC vec3 tyn_spot_segment(TYN_SCATTERING_LUT_ACCESS TynMedium m, TynLightRay r, TynSpotCone cone,
                                float ta, float tb) {
-  vec2 outer = tyn_spot_cone_interval(r, cone, cone.cos_outer, ta, tb);
-  if (!(outer.y > outer.x)) return vec3(0.0f);
-  vec2 inner = tyn_spot_cone_interval(r, cone, cone.cos_inner, outer.x, outer.y);
-  if (!(inner.y > inner.x)) return tyn_local_light_quadrature(m, r, cone, true, outer.x, outer.y);
-  return tyn_local_light_quadrature(m, r, cone, true, outer.x, inner.x) +
-         tyn_scattering_lut_segment(TYN_SCATTERING_LUT_PASS m, r, inner.x, inner.y) +
-         tyn_local_light_quadrature(m, r, cone, true, inner.y, outer.y);
+  return tyn_spot_ray_segment(TYN_SCATTERING_LUT_PASS m, r, cone, tyn_spot_ray(r, cone), ta, tb);
 }
 #endif
 

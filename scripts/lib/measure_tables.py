@@ -49,7 +49,7 @@ def epipolar_row(a):
     print(json.dumps({"scene": a.scene, "size": a.size, "map": int(a.map), "cascades": a.cascades, "profile": a.profile,
                       "device": t["device"], "passes": t["passMilliseconds"], "total": t["totalMilliseconds"],
                       "reference": r["totalMilliseconds"], "rmse": e["relativeRmse"], "nonFinite": e["nonFinite"],
-                      "marched": t.get("marchedSamples", 0), "fixedUp": t.get("fixedUpPixelFraction", 0.0),
+                      "marched": t.get("marchedSamples", 0), "fixedUp": t.get("fixedUpPixelFraction", -1.0),
                       "lights": t.get("lightMilliseconds", []), "referenceLights": r.get("lightMilliseconds", [])}))
 
 

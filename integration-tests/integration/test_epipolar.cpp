@@ -90,7 +90,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarScenes,
 // Balanced. The spot scenes of thin occluders (spot-fan, -grille, -lattice, -foliage) put fine
 // shafts next to the light, seen from outside, inside and on the cone.
 // The bars are the profiles' per-scene bars (samples/bench/report.cpp profileGoals, which the
-// profile choice of docs/TRADEOFFS.md holds every scene to): the issue's, which every sample scene
+// profile choice of docs/TRADEOFFS-H200.md holds every scene to): the issue's, which every sample scene
 // meets (stained-glass did not until the slices were spread over the spot cone's wedge only,
 // slice_arc.h: High 7.6% -> 1.78%, Balanced 18% -> 3.41%).
 double sceneBar(Profile profile) { return samples::bench::profileGoal(profile)->maxSceneRelativeRmse; }

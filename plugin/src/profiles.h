@@ -20,7 +20,7 @@ constexpr LightClass lightClassOf(LightType type) {
   return type == LightType::Directional ? LightClass::Directional : LightClass::Local;
 }
 
-/// "directional", "local": the names docs/TRADEOFFS.md's choice table uses.
+/// "directional", "local": the names the choice tables of docs/TRADEOFFS*.md use.
 const char* to_string(LightClass lights);
 
 struct ProfileChoice {

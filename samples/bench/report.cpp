@@ -664,8 +664,9 @@ bool writeReports(const std::vector<Row>& rows, const ReportContext& context, co
 
   // The configuration a profile runs as on its kind of light's scenes: the profile table's row
   // (plugin/src/profiles.cpp, the incumbent) where this run measured it, else this run's choice (a
-  // sweep without the table's row); choice.json's asItRuns and the per-scene table below. On the run docs/TRADEOFFS.md shows the two are the
-  // same; on another device's or size's run the choice may differ, and the profiles run the table.
+  // sweep without the table's row); choice.json's asItRuns and the per-scene table below. On the run
+  // docs/TRADEOFFS-H200.md shows the two are the same; on another device's or size's run the choice
+  // may differ, and the profiles run the table.
   // Its medians over every scene are what the goals are stated for.
   // The kind's summaries are its configurations measured at the choice's size.
   const auto asItRuns = [&](const ClassChoice& byClass, Profile profile, const Summary& chosen) {

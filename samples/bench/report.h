@@ -1,7 +1,7 @@
 // tyndall-bench's outputs: the rows as CSV, JSON and a Markdown table; per output and shadow-map
 // size the configurations summarised over the scenes and their Pareto front (pareto.json, which
-// scripts/plot-pareto.py draws); and the profile choice with the document docs/TRADEOFFS.md is
-// generated from.
+// scripts/plot-pareto.py draws); and the profile choice with the document docs/TRADEOFFS*.md are
+// generated from (docs/TRADEOFFS-H200.md's is the profile table).
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 // The text form of the techniques' parameters: `KEY=VALUE[,KEY=VALUE…]` over the defaults, as
 // tyndall-render's --epipolar / --prefiltered take them, tyndall-bench names its configurations and
-// docs/TRADEOFFS.md writes the profile table. describe() writes the fields that differ from the
+// docs/TRADEOFFS*.md write the profile table. describe() writes the fields that differ from the
 // defaults in a fixed order, so that parse(describe(s)) == s and equal settings read the same.
 #pragma once
 

@@ -75,7 +75,7 @@ using MessageCallback = void (*)(Severity severity, const char* message, void* u
 // ----------------------------------------------------------------------------------------------
 
 /// A profile maps to a technique and its parameters through the profile table
-/// (plugin/src/profiles.cpp, justified in docs/TRADEOFFS.md). Switching needs no new context.
+/// (plugin/src/profiles.cpp, justified in docs/TRADEOFFS-H200.md). Switching needs no new context.
 enum class Profile : std::uint32_t {
   Reference,  ///< brute force per pixel, texel by texel through the shadow map (validation)
   High,

@@ -51,13 +51,6 @@ std::uint32_t chosenHeight() {
   return read ? context.chooseHeight : 0;
 }
 
-template <typename Settings>
-Settings asRunAt(Settings settings, std::uint32_t outputHeight) {
-  settings.resolution = resolutionForRows(settings.resolution, settings.minimumRows, outputHeight);
-  settings.minimumRows = 0;
-  return settings;
-}
-
 TEST(TradeoffsDocument, AgreesWithTheProfileTable) {
   const std::string path = std::string(TYNDALL_DOCS_DIR) + "/data/profile-table-choice.json";
   const std::map<std::pair<std::string, std::string>, ChosenRow> rows = choiceData(path);
@@ -90,10 +83,10 @@ TEST(TradeoffsDocument, AgreesWithTheProfileTable) {
       std::string codeParameters;
       if (code.technique == Technique::Prefiltered) {
         checkFloor(code.prefiltered);
-        codeParameters = samples::describe(asRunAt(code.prefiltered, height));
+        codeParameters = samples::describe(settingsAsRunAt(code.prefiltered, height));
       } else {
         checkFloor(code.epipolar);
-        codeParameters = samples::describe(asRunAt(code.epipolar, height));
+        codeParameters = samples::describe(settingsAsRunAt(code.epipolar, height));
       }
       EXPECT_EQ(chosen.parameters, codeParameters);
       // The bench's incumbents (the configurations challengers must beat by a margin) name the same.

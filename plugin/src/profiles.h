@@ -49,6 +49,15 @@ constexpr ScatteringResolution resolutionForRows(ScatteringResolution asked, std
   return r;
 }
 
+/// Technique settings as they run for an output of `outputHeight` rows: the resolution the floor
+/// leaves (resolutionForRows), the floor itself dropped, so that they name what a sweep measures.
+template <class Settings>
+constexpr Settings settingsAsRunAt(Settings settings, std::uint32_t outputHeight) {
+  settings.resolution = resolutionForRows(settings.resolution, settings.minimumRows, outputHeight);
+  settings.minimumRows = 0;
+  return settings;
+}
+
 /// The row for a profile and a kind of light (the context resolves Auto to High, Balanced or
 /// Performance first).
 const ProfileChoice& profileChoice(Profile profile, LightClass lights);

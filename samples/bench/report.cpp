@@ -334,18 +334,13 @@ const ProfileGoal* profileGoal(Profile profile) {
 }
 
 std::map<Profile, std::string> profileTableConfigurations(LightClass lights, std::uint32_t outputHeight) {
-  const auto asRun = [&](auto settings) {
-    settings.resolution = resolutionForRows(settings.resolution, settings.minimumRows, outputHeight);
-    settings.minimumRows = 0;
-    return settings;
-  };
   std::map<Profile, std::string> out;
   for (const ProfileGoal& goal : profileGoals()) {
     const ProfileChoice& row = profileChoice(goal.profile, lights);
     Configuration c;
     c.technique = row.technique;
-    if (row.technique == Technique::Epipolar) c.epipolar = asRun(row.epipolar);
-    if (row.technique == Technique::Prefiltered) c.prefiltered = asRun(row.prefiltered);
+    if (row.technique == Technique::Epipolar) c.epipolar = settingsAsRunAt(row.epipolar, outputHeight);
+    if (row.technique == Technique::Prefiltered) c.prefiltered = settingsAsRunAt(row.prefiltered, outputHeight);
     out[goal.profile] = c.name();
   }
   return out;

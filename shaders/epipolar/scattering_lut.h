@@ -275,8 +275,6 @@ TYN_FUNC vec3 tyn_scattering_lut_segment(TYN_SCATTERING_LUT_ACCESS TynMedium m, 
   return tyn_scattering_lut_segment_guarded(TYN_SCATTERING_LUT_PASS m, r, ta, tb, TYN_SCATTERING_LUT_GUARD);
 }
 
-// S(t_a, t_b) for a spot light over a lit section: the table inside the inner cone, quadrature
-// with the falloff in the penumbra, nothing outside the outer cone.
 // A view ray's intervals inside the spot's outer and inner cones, whole (a cone meets a line in
 // one interval): clipping them to a section gives what tyn_spot_cone_interval gives for it, so a
 // march computes them once per ray instead of twice per lit section.
@@ -293,6 +291,8 @@ TYN_FUNC TynSpotRay tyn_spot_ray(TynLightRay r, TynSpotCone cone) {
   return s;
 }
 
+// S(t_a, t_b) for a spot light over a lit section, given its ray's cone intervals: the table inside
+// the inner cone, quadrature with the falloff in the penumbra, nothing outside the outer cone.
 TYN_SCATTERING_LUT_TEMPLATE
 TYN_FUNC vec3 tyn_spot_ray_segment(TYN_SCATTERING_LUT_ACCESS TynMedium m, TynLightRay r, TynSpotCone cone,
                                    TynSpotRay spot, float ta, float tb) {
@@ -324,6 +324,7 @@ TYN_FUNC vec3 tyn_spot_ray_segment(TYN_SCATTERING_LUT_ACCESS TynMedium m, TynLig
   return q_before + tyn_scattering_lut_segment(TYN_SCATTERING_LUT_PASS m, r, inner.x, inner.y) + q_after;
 }
 
+// The same, the cone intervals found for this section alone.
 TYN_SCATTERING_LUT_TEMPLATE
 TYN_FUNC vec3 tyn_spot_segment(TYN_SCATTERING_LUT_ACCESS TynMedium m, TynLightRay r, TynSpotCone cone,
                                float ta, float tb) {

@@ -149,7 +149,7 @@ TEST_P(EpipolarProfiles, EachProfileMatchesTheReference) {
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
                          ::testing::Values("pillars", "fence", "forest", "window-room", "spot-lamp",
                                            "stained-glass", "point-lamp", "spot-fan", "spot-grille",
-                                           "spot-lattice", "spot-foliage", "spot-street"),
+                                           "spot-lattice", "spot-foliage", "spot-street", "gltf-pergola"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;
@@ -168,7 +168,8 @@ TEST_P(EpipolarSpotProfilesSmall, EachProfileMatchesTheReference) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarSpotProfilesSmall,
                          ::testing::Values("spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice",
-                                           "spot-foliage", "spot-street", "point-fan", "point-cage", "point-street"),
+                                           "spot-foliage", "spot-street", "point-fan", "point-cage", "point-street",
+                                           "gltf-pergola-lamp"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;

@@ -710,6 +710,45 @@ TEST(Triangulation, GltfTetrahedronKeepsItsNodeTransformThenTheObjectPlacement) 
   EXPECT_EQ(mesh.albedo, glm::vec3(glm::dvec3(0.7, 0.6, 0.3)));
 }
 
+// The pergola (scripts/generate-gltf-assets.py) is laid out as exporters write real assets: a
+// z-up centimetre model under a root that turns it y-up and scales it to metres, instanced meshes,
+// a node placed by a matrix, a mirrored group, u8/u16/u32 and no indices, an interleaved view,
+// two accessors in one view, a triangle strip, a mesh of two primitives, and camera and empty
+// nodes. A misread stride, offset, index size, strip or mirror shows as a triangle whose winding
+// disagrees with the file's normals, a wrong count or a wrong extent.
+TEST(Triangulation, GltfPergolaReadsEveryLayoutAndTransformAsWritten) {
+  const SceneLoadResult result = loadScene(kScenesDir / "gltf-pergola.json");
+  ASSERT_TRUE(result.scene.has_value()) << result.error;
+  const Object& object = result.scene->objects.at(1);
+  ASSERT_EQ(object.type, ObjectType::Gltf);
+  const std::vector<Triangle> tris = triangles(triangulateOne(object));
+  // Boxes of 12 triangles: 8 posts, 2 beams, 25 slats, 6 strip bars, the planter's walls and
+  // soil; 300 two-sided leaf cards of 4.
+  EXPECT_EQ(tris.size(), (8u + 2u + 25u + 6u + 2u) * 12u + 300u * 4u);
+  double lowest = 1e9, highest = -1e9;
+  std::size_t disagreeing = 0;
+  for (const Triangle& t : tris) {
+    const glm::dvec3 n = t.geometricNormal();
+    for (int k = 0; k < 3; ++k) {
+      if (glm::dot(t.n[k], n) < 0.999) ++disagreeing;
+      lowest = std::min(lowest, t.p[k].y);
+      highest = std::max(highest, t.p[k].y);
+    }
+  }
+  EXPECT_EQ(disagreeing, 0u) << "vertex normals against the triangles' winding";
+  // Posts stand on the ground (asset z = 0); leaves reach 3 m (asset z ≤ 300 cm plus a card's
+  // tilt: 4 cm · sin 0.5).
+  EXPECT_NEAR(lowest, 0.0, 1e-5);
+  EXPECT_GT(highest, 2.95);
+  EXPECT_LT(highest, 3.02);
+  // The slats span the asset's y ∈ [−180, 180] cm, which the root turns into world z before the
+  // scene's 15° turn about y: the roof's horizontal extent is at most the 6.4 m × 3.6 m rectangle's
+  // half-diagonal from the centre.
+  for (const Triangle& t : tris) {
+    for (int k = 0; k < 3; ++k) EXPECT_LT(glm::length(glm::dvec2(t.p[k].x, t.p[k].z)), std::hypot(3.2, 1.8) + 1e-4);
+  }
+}
+
 std::string base64(const std::vector<unsigned char>& bytes) {
   static constexpr char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string text;

@@ -1,11 +1,17 @@
 #!/usr/bin/env python3
-"""Writes the local-light scenes of thin, many-bladed occluders: samples/scenes/spot-{fan,grille,lattice,foliage,street}.json
-and samples/scenes/point-{fan,cage,street}.json.
+"""Writes the local-light scenes of thin, many-bladed occluders:
+samples/scenes/spot-{fan,fan-up,fan-narrow,fan-close,grille,lattice,foliage,street}.json and
+samples/scenes/point-{fan,cage,street}.json.
 
 Each spot scene has a 35-degree spot light whose cone is cut into fine shafts by thin boxes, seen
 from a different place relative to the cone:
 
     spot-fan      a ceiling fan's eight thin, pitched blades under the lamp; camera outside the cone
+    spot-fan-up   an uplight under a three-bladed fan, lighting the ceiling; camera below and behind
+                  the cone, the lamp in view
+    spot-fan-narrow  a 15-degree lamp just above five blades, seen from 18 m
+    spot-fan-close   a 60-degree lamp tilted over twelve blades; camera inside the cone close under
+                  the fan, looking up into the lamp
     spot-grille   a grille of thin parallel bars; camera inside the cone, under the grille
     spot-lattice  a lattice of crossed thin bars turned 20 degrees; camera on the cone's outer edge
     spot-foliage  400 small leaf cards at random rotations (fixed seed); camera outside the cone
@@ -22,7 +28,7 @@ The point scenes (six shadow maps each) cut a bare bulb's light into shafts in e
 The layout is deterministic: the leaves come from SplitMix64 with a fixed seed (scripts/lib/splitmix.py, so
 the output does not depend on the Python version's random module). Run from anywhere:
 
-    python3 scripts/generate-spot-scenes.py            # rewrites the eight scene files
+    python3 scripts/generate-spot-scenes.py            # rewrites the eleven scene files
     python3 scripts/generate-spot-scenes.py --check    # exits 1 if a committed file is out of date
 """
 import argparse
@@ -199,7 +205,57 @@ def point_street():
     }
 
 
-SCENES = {"spot-fan": fan, "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage,
+def fan_blades(count, radius, half, pitch, first_yaw, height):
+    """`count` blades round the hub, blade k along yaw first_yaw + k·360/count (as fan())."""
+    blades = []
+    for k in range(count):
+        yaw = first_yaw + 360.0 * k / count
+        c, s = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
+        blades.append(box([radius * c, height, -radius * s], half, [pitch, yaw, 0]))
+    return blades
+
+
+def fan_up():
+    objects = [{"type": "plane", "point": [0, 8, 0], "normal": [0, -1, 0], "albedo": [0.6, 0.6, 0.6]},
+               box([0, 6.15, 0], [0.16, 0.06, 0.16])] + fan_blades(3, 1.1, [0.95, 0.015, 0.16], 10, 10, 6.1)
+    return {
+        "description": "An uplight under a ceiling fan's three broad blades: the 50-degree cone shines up through "
+                       "them onto the ceiling; the camera stands below the lamp, behind its cone, looking up past it.",
+        "camera": '{"position": [1.0, 1.6, 1.5], "target": [0, 6, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 70, "near": 0.1, "far": 80}',
+        "light": '{"type": "spot", "position": [0.2, 4.5, 0.1], "direction": [0, 1, 0], "color": [1.0, 0.9, 0.75],\n'
+                 '            "intensity": 60, "innerConeDegrees": 40, "outerConeDegrees": 50}',
+        "objects": objects,
+    }
+
+
+def fan_narrow():
+    objects = [box([0, 6.15, 0], [0.12, 0.05, 0.12])] + fan_blades(5, 0.7, [0.6, 0.01, 0.05], 20, 0, 6.1)
+    return {
+        "description": "A narrow 15-degree spot lamp just above a five-bladed fan, seen from 18 m: the blades cut "
+                       "its thin cone into a few shafts next to the lamp.",
+        "camera": '{"position": [12, 2, 14], "target": [0, 3, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 50, "near": 0.1, "far": 100}',
+        "light": '{"type": "spot", "position": [0, 6.8, 0], "direction": [0, -1, 0], "color": [1.0, 0.9, 0.75],\n'
+                 '            "intensity": 200, "innerConeDegrees": 12, "outerConeDegrees": 15}',
+        "objects": objects,
+    }
+
+
+def fan_close():
+    objects = [box([0, 6.15, 0], [0.16, 0.06, 0.16])] + fan_blades(12, 1.0, [0.85, 0.01, 0.04], 25, 5, 6.1)
+    return {
+        "description": "A wide 60-degree spot lamp tilted over a twelve-bladed fan; the camera stands inside the "
+                       "cone close under the fan, looking up into the lamp between the blades.",
+        "camera": '{"position": [2.5, 4.0, 3.0], "target": [0, 5.5, 0], "up": [0, 1, 0],\n'
+                  '             "fovYDegrees": 75, "near": 0.05, "far": 60}',
+        "light": '{"type": "spot", "position": [0, 6.6, 0], "direction": [0.2, -1, 0.1], "color": [1.0, 0.9, 0.75],\n'
+                 '            "intensity": 60, "innerConeDegrees": 50, "outerConeDegrees": 60}',
+        "objects": objects,
+    }
+
+
+SCENES = {"spot-fan": fan, "spot-fan-up": fan_up, "spot-fan-narrow": fan_narrow, "spot-fan-close": fan_close, "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage,
           "spot-street": street, "point-fan": point_fan, "point-cage": cage, "point-street": point_street}
 
 

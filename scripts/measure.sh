@@ -58,7 +58,8 @@ spot         The profiles against the Reference on the spot-light scenes and on 
              point light (same place, same occluders): relative RMSE of L_in per scene, size and
              profile, against the per-scene bars. Writes SPOT_OUT (out/spot-accuracy) and, with the
              default SCENES, SIZES and MAP, docs/measurements/spot-accuracy-lavapipe.md. SCENES
-             (spot-lamp stained-glass spot-fan spot-grille spot-lattice spot-foliage spot-street), SIZES
+             (spot-lamp stained-glass spot-fan spot-fan-up spot-fan-narrow spot-fan-close spot-grille
+             spot-lattice spot-foliage spot-street gltf-pergola-lamp), SIZES
              (320x180 480x270), MAP (2048), PROFILES (high balanced performance), FRAMES (3),
              POINT (1; 0 leaves out the point-light variants, whose Reference is slow on lavapipe),
              EPIPOLAR_HIGH, EPIPOLAR_BALANCED, EPIPOLAR_PERFORMANCE (a profile's run with these
@@ -285,7 +286,8 @@ part_epipolar() {
 # spot: per spot scene (and its point-light variant), size and profile the error against the Reference.
 part_spot() {
   local render compare out rows map frames scene file size w h light ref profile run doc keys
-  local default_scenes="spot-lamp stained-glass spot-fan spot-grille spot-lattice spot-foliage spot-street"
+  local default_scenes="spot-lamp stained-glass spot-fan spot-fan-up spot-fan-narrow spot-fan-close spot-grille"
+  default_scenes+=" spot-lattice spot-foliage spot-street gltf-pergola-lamp"
   render="$(program "$1" tyndall-render)"
   compare="$(program "$1" tyndall-compare)"
   out="${SPOT_OUT:-out/spot-accuracy}"

@@ -157,7 +157,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
                          });
 
 // The spot scenes again at 320×180, the smallest size the per-scene bars hold at: the fine shafts
-// next to the lamp are then only a few pixels from it. High's 512 slices march more samples than
+// next to the lamp are then only a few pixels from it. spot-fan-up, -narrow and -close look into
+// the lamp between the blades: there the pixels next to it hold most of the frame's error, which
+// the stepped fix-up of Balanced and Performance put at 7–98% before those pixels took the walk. High's 512 slices march more samples than
 // the 57,600 pixels there, so only the accuracy is held. The point scenes of thin occluders run
 // here only (a point light's Reference walks six maps: at 640×360 they would add minutes).
 class EpipolarSpotProfilesSmall : public ::testing::TestWithParam<const char*> {};
@@ -167,9 +169,9 @@ TEST_P(EpipolarSpotProfilesSmall, EachProfileMatchesTheReference) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarSpotProfilesSmall,
-                         ::testing::Values("spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice",
-                                           "spot-foliage", "spot-street", "point-fan", "point-cage", "point-street",
-                                           "gltf-pergola-lamp"),
+                         ::testing::Values("spot-lamp", "stained-glass", "spot-fan", "spot-fan-up", "spot-fan-narrow",
+                                           "spot-fan-close", "spot-grille", "spot-lattice", "spot-foliage", "spot-street",
+                                           "point-fan", "point-cage", "point-street", "gltf-pergola-lamp"),
                          [](const auto& test_param) {
                            std::string name = test_param.param;
                            for (char& c : name) c = c == '-' ? '_' : c;

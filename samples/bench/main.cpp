@@ -20,8 +20,9 @@ const char* const kUsage =
     "         [--no-storage-back-buffer] [--measurements-link PATH]\n"
     "       tyndall-bench --from RESULTS.json [--choose-at WxH/N] [--out DIR] [--measurements-link PATH]\n"
     "  --scenes: names in samples/scenes/ or scene files (default: the directional pillars,fence,forest,\n"
-    "            window-room,gltf-pergola, the spot spot-lamp,stained-glass,spot-fan,spot-grille,spot-lattice,\n"
-    "            spot-foliage,spot-street,gltf-pergola-lamp, the point point-lamp,point-fan,point-cage,point-street\n"
+    "            window-room,gltf-pergola, the spot spot-lamp,stained-glass,spot-fan,spot-fan-up,spot-fan-narrow,\n"
+    "            spot-fan-close,spot-grille,spot-lattice,spot-foliage,spot-street,gltf-pergola-lamp, the point\n"
+    "            point-lamp,point-fan,point-cage,point-street\n"
     "            and street-dusk's several lights:\n"
     "            a profile row is chosen over every scene of its kind of light)\n"
     "  --sizes / --shadow-maps: output sizes and shadow-map sizes (default 640x360 / 2048)\n"
@@ -81,8 +82,8 @@ int main(int argc, char** argv) {
   std::string from;
   std::vector<std::string> scenes{
       "pillars", "fence", "forest", "window-room", "gltf-pergola",  // directional
-      "spot-lamp", "stained-glass", "spot-fan", "spot-grille", "spot-lattice", "spot-foliage", "spot-street",
-      "gltf-pergola-lamp",  // spot
+      "spot-lamp", "stained-glass", "spot-fan", "spot-fan-up", "spot-fan-narrow", "spot-fan-close", "spot-grille",
+      "spot-lattice", "spot-foliage", "spot-street", "gltf-pergola-lamp",  // spot
       "point-lamp", "point-fan", "point-cage", "point-street",  // point
       "street-dusk"};  // several lights: in the tables over every scene, in no kind's choice
   context.commandLine = "tyndall-bench";

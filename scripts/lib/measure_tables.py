@@ -17,6 +17,7 @@ tyndall-compare's error JSON: one subcommand per kind of row (measure.sh's parts
 """
 import argparse
 import json
+import os
 import statistics
 
 
@@ -210,9 +211,14 @@ def point_variant(a):
     light["type"] = "point"
     for key in ("direction", "innerConeDegrees", "outerConeDegrees"):
         light.pop(key, None)
-    # A relative light-colour texture or glTF path stays valid from the scene's own folder only.
+    # A relative light-colour texture or glTF path stays valid from the scene's own folder only: the
+    # texture goes (a point light takes none), glTF paths are made absolute.
     if "colorTexture" in light:
         light.pop("colorTexture")
+    folder = os.path.dirname(os.path.abspath(a.scene))
+    for o in scene.get("objects", []):
+        if "path" in o and not os.path.isabs(o["path"]):
+            o["path"] = os.path.join(folder, o["path"])
     scene["description"] = "The point-light variant of " + a.scene + " (measure.sh spot)."
     with open(a.out, "w") as f:
         json.dump(scene, f, indent=1)

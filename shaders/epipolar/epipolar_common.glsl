@@ -98,6 +98,13 @@ layout(push_constant, std430) uniform EpipolarBlock { EpipolarConstants epipolar
 
 vec2 tyn_output_extent() { return vec2(frame.output_extent); }
 
+// Whether the output pixel centre at `ndc` lies within `radius` pixels of the epipole (on screen or
+// just off it; a light at infinity has none): EpipolarConstants::epipole_block_radius for the epipole
+// block, epipole_walk_radius for its part that the fix-up walks texel by texel.
+bool tyn_near_epipole(vec2 ndc, float radius) {
+  return epipolar.epipole.z > 1e-6 && length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * tyn_output_extent()) <= radius;
+}
+
 // The tree image's row of a slice's tree in map `map`: the slices' rows of map 0, then of map 1, ….
 int tyn_epipolar_tree_row(int slice, uint map) { return int(map * epipolar.slice_count) + slice; }
 

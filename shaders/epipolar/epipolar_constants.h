@@ -114,6 +114,8 @@ struct EpipolarConstants {
   uint fixup_steps;                     // the fix-up's steps per map (0: the texel walk)
   uint shadow_block_side;               // blocks along each side of each map in this frame's block
                                         // image (shadowBlockExtent); 0 when it has none
+  float epipole_walk_radius;            // pixels around the epipole whose fix-up takes the texel
+                                        // walk whatever fixup_steps (local lights: fixup.comp)
 };
 
 TYN_END

@@ -45,6 +45,14 @@ void fix_up(uint index, bool writer) {
   uvec2 output_pixel = tyn_output_pixel(pixel);
   float depth = texelFetch(depth_buffer, ivec2(output_pixel), 0).r;
   TynViewRay ray = tyn_view_ray(output_pixel, depth);
+  // A ray next to the epipole passes close to a local light, where in-scattering peaks as 1/b for
+  // a passing distance b and the pixel outshines the frame many times over. Occluders next to the
+  // lamp cut that peak finer than the steps' one verdict each resolves, so those rays take the
+  // texel walk, as the Reference does; the steps serve the other listed pixels.
+  bool peak = TYN_LIGHT_TYPE != TYN_LIGHT_DIRECTIONAL &&
+              tyn_near_epipole(tyn_ndc_from_pixel(vec2(output_pixel) + 0.5, tyn_output_extent()),
+                               epipolar.epipole_walk_radius);
+  tyn_fixup_pixel_steps = peak ? 0u : epipolar.fixup_steps;
   vec3 in_scattering = TYN_FIXUP_SERIAL ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
                                         : tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
   if (writer) imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));

@@ -18,7 +18,10 @@
 
 #include "common/texel_walk.glsl"
 
-uint tyn_walk_steps() { return epipolar.fixup_steps; }
+// The steps of the pixel being fixed up: EpipolarSettings::fixupSteps, or 0 (the texel walk) where
+// fixup.comp finds that steps cannot follow the pixel's in-scattering.
+uint tyn_fixup_pixel_steps = 0u;
+uint tyn_walk_steps() { return tyn_fixup_pixel_steps; }
 
 // Where step `i` of `steps` begins on [t0, t1] (i = steps: t1): where the ray's clip coordinate
 // along `axis` has gone i/steps of the way from c0 to c1; i/steps of [t0, t1] instead when the ray

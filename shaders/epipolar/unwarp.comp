@@ -84,9 +84,8 @@ void tyn_unwarp(uvec2 target_pixel) {
   float density = epipolar.epipole_density;
   // Next to the projected light, in-scattering varies faster than any sample spacing can follow
   // (1/d² of a local light, the phase peak): that block is ray-marched per pixel (klehm2014
-  // Fig. 8). The light may sit just off screen and still have such pixels; at infinity it has none.
-  bool near_epipole = epipolar.epipole.z > 1e-6 &&
-                      length((ndc - tyn_epipole_ndc(epipolar.epipole)) * 0.5 * extent) <= epipolar.epipole_block_radius;
+  // Fig. 8).
+  bool near_epipole = tyn_near_epipole(ndc, epipolar.epipole_block_radius);
   float slice_coordinate = tyn_arc_slice_coordinate_of(epipolar.epipole, ndc, slices, vec2(epipolar.arc_start, epipolar.arc_length), extent);
   if (slice_coordinate < 0.0) {
     if (!near_epipole) {

@@ -54,6 +54,10 @@ gpu::EpipolarConstants epipolarConstants(const FrameDesc& frame, const EpipolarS
   k.bilateral_depth_threshold = settings.bilateralDepthThreshold;
   k.fixup_weight_threshold = settings.fixupWeightThreshold;
   k.epipole_block_radius = epipoleBlockRadius(settings, extent.height);
+  // The default block's disc is where a local light's peak outshines the frame (docs/EPIPOLAR.md
+  // "Fewer steps"): its pixels take the texel walk even with fixupSteps; a larger block asked for
+  // takes the steps outside it.
+  k.epipole_walk_radius = std::min(k.epipole_block_radius, epipoleBlockRadius(EpipolarSettings{}, extent.height));
   // Directional and spot lights march along each slice's line in their map (a directional light's
   // cascades: one line each, all maps the same size); a point light's rays cross six maps, so its
   // samples take the Reference's walk. The tree's level 0 lives in the build pass's shared memory,

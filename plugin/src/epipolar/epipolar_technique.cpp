@@ -31,7 +31,8 @@ static_assert(offsetof(gpu::EpipolarConstants, tree_samples) == 64);
 static_assert(offsetof(gpu::EpipolarConstants, colored_chunk) == 76);
 static_assert(offsetof(gpu::EpipolarConstants, arc_start) == 80);
 static_assert(offsetof(gpu::EpipolarConstants, shadow_block_side) == 92);
-static_assert(sizeof(gpu::EpipolarConstants) == 96);
+static_assert(offsetof(gpu::EpipolarConstants, epipole_walk_radius) == 96);
+static_assert(sizeof(gpu::EpipolarConstants) == 100);
 // TYN_MARCH_PARTS of march.comp and of the passes that size its rounds (dispatch_chain.glsl;
 // constant_id 1 is the light-colour switch).
 constexpr std::uint32_t kMarchPartsConstantId = 2;

@@ -42,7 +42,7 @@ SCENES = ROOT / "samples" / "scenes"
 # glTF enumerations (glTF 2.0 specification, 3.6.2 and 3.7.2).
 UNSIGNED_BYTE, UNSIGNED_SHORT, UNSIGNED_INT, FLOAT = 5121, 5123, 5125, 5126
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
-TRIANGLES, TRIANGLE_STRIP = 4, 5
+TRIANGLE_STRIP = 5  # TRIANGLES (4) is a primitive's default mode
 
 # The cube's corners as bits (x = bit 0, y = bit 1, z = bit 2) and a 14-index strip over them that
 # covers its six faces; the generator checks below that every strip triangle faces outwards.
@@ -141,10 +141,6 @@ class Buffer:
         return self.accessor(view, component, len(values), "SCALAR")
 
 
-def r(values, digits=4):
-    return [round(v, digits) + 0.0 for v in values]
-
-
 def f32(values):
     """Rounded as the binary buffer stores them, so min/max match the data."""
     return [struct.unpack("<f", struct.pack("<f", v))[0] for v in values]
@@ -202,8 +198,8 @@ def build():
                 for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1))]
         for sign, order in ((1, (0, 1, 2, 0, 2, 3)), (-1, (0, 2, 1, 0, 3, 2))):
             base = len(lp)
-            lp += [f32(q) for q in quad]
-            ln += [f32([sign * nx, sign * ny, sign * nz])] * 4
+            lp += quad
+            ln += [[sign * nx, sign * ny, sign * nz]] * 4
             li += [base + o for o in order]
     leaves = mesh("leaves", [{"attributes": {"POSITION": buf.vec3(lp), "NORMAL": buf.vec3(ln)},
                               "indices": buf.indices(li, UNSIGNED_INT), "material": 1}])

@@ -56,14 +56,21 @@ def box(center, half, rotation=(0, 0, 0), albedo=DARK):
             "albedo": albedo}
 
 
-def fan():
-    # Blades along x before rotation: pitched about their long axis (x), then turned about y
-    # (R = Rz·Ry·Rx), so a blade at yaw θ points along (cos θ, 0, −sin θ).
-    objects = [box([0, 6.15, 0], [0.16, 0.06, 0.16])]  # the hub
-    for k in range(8):
-        yaw = 22.5 + 45.0 * k
+def fan_blades(count, radius, half, pitch, first_yaw, height):
+    """`count` blades round the hub, blade k along yaw first_yaw + k·360/count. Blades lie along x
+    before rotation: pitched about their long axis (x), then turned about y (R = Rz·Ry·Rx), so a
+    blade at yaw θ points along (cos θ, 0, −sin θ)."""
+    blades = []
+    for k in range(count):
+        yaw = first_yaw + 360.0 * k / count
         c, s = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
-        objects.append(box([1.0 * c, 6.1, -1.0 * s], [0.85, 0.012, 0.07], [14, yaw, 0]))
+        blades.append(box([radius * c, height, -radius * s], half, [pitch, yaw, 0]))
+    return blades
+
+
+def fan():
+    objects = [box([0, 6.15, 0], [0.16, 0.06, 0.16])]  # the hub
+    objects += fan_blades(8, 1.0, [0.85, 0.012, 0.07], 14, 22.5, 6.1)
     objects += [box([1.5, 0.45, 0.6], [0.45, 0.45, 0.45], [0, 30, 0], [0.7, 0.35, 0.2]),
                 {"type": "sphere", "center": [-1.2, 0.6, -0.8], "radius": 0.6, "albedo": [0.2, 0.4, 0.7]}]
     return {
@@ -205,16 +212,6 @@ def point_street():
     }
 
 
-def fan_blades(count, radius, half, pitch, first_yaw, height):
-    """`count` blades round the hub, blade k along yaw first_yaw + k·360/count (as fan())."""
-    blades = []
-    for k in range(count):
-        yaw = first_yaw + 360.0 * k / count
-        c, s = math.cos(math.radians(yaw)), math.sin(math.radians(yaw))
-        blades.append(box([radius * c, height, -radius * s], half, [pitch, yaw, 0]))
-    return blades
-
-
 def fan_up():
     objects = [{"type": "plane", "point": [0, 8, 0], "normal": [0, -1, 0], "albedo": [0.6, 0.6, 0.6]},
                box([0, 6.15, 0], [0.16, 0.06, 0.16])] + fan_blades(3, 1.1, [0.95, 0.015, 0.16], 10, 10, 6.1)
@@ -255,8 +252,8 @@ def fan_close():
     }
 
 
-SCENES = {"spot-fan": fan, "spot-fan-up": fan_up, "spot-fan-narrow": fan_narrow, "spot-fan-close": fan_close, "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage,
-          "spot-street": street, "point-fan": point_fan, "point-cage": cage, "point-street": point_street}
+SCENES = {"spot-fan": fan, "spot-fan-up": fan_up, "spot-fan-narrow": fan_narrow, "spot-fan-close": fan_close,
+          "spot-grille": grille, "spot-lattice": lattice, "spot-foliage": foliage, "spot-street": street, "point-fan": point_fan, "point-cage": cage, "point-street": point_street}
 
 
 def scene_text(scene):

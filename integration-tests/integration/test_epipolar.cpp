@@ -158,9 +158,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, EpipolarProfiles,
 
 // The spot scenes again at 320×180, the smallest size the per-scene bars hold at: the fine shafts
 // next to the lamp are then only a few pixels from it. spot-fan-up, -narrow and -close look into
-// the lamp between the blades: there the pixels next to it hold most of the frame's error, which
-// the stepped fix-up of Balanced and Performance put at 7–98% before those pixels took the walk. High's 512 slices march more samples than
-// the 57,600 pixels there, so only the accuracy is held. The point scenes of thin occluders run
+// the lamp between the blades, where the pixels next to it hold most of the frame's error
+// (docs/EPIPOLAR.md "Fewer steps"). High's 512 slices march more samples than the 57,600 pixels
+// there, so only the accuracy is held. The point scenes of thin occluders run
 // here only (a point light's Reference walks six maps: at 640×360 they would add minutes).
 class EpipolarSpotProfilesSmall : public ::testing::TestWithParam<const char*> {};
 

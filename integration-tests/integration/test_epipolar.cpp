@@ -204,6 +204,7 @@ TEST(EpipolarLitSections, TheFixUpWalkMatchesTheReference) {
     o.height = 54;
     o.frames = 3;  // the fix-up count of a frame is read when its slot comes round again
     o.epipolar->epipoleFixupRadius = 256.0f;
+    o.fullFloatTargets = true;  // the walks compared below half-float rounding
     const samples::RenderResult walked = renderWithAovs(scene, o);
     ASSERT_EQ(walked.stats.epipolarCounts.value().fixedUpPixelFraction, 1.0);
     samples::RenderOptions ref = o;
@@ -252,6 +253,7 @@ TEST(EpipolarFixup, TheBlockWalkMatchesTheReference) {
       o.shadowMapSize = c.shadowMapSize;
       o.marchThreadsPerSample = threads;
       o.epipolar->epipoleFixupRadius = 256.0f;
+      o.fullFloatTargets = true;  // the walks compared below half-float rounding
       const samples::RenderResult walked = renderWithAovs(scene, o);
       ASSERT_EQ(walked.stats.epipolarCounts.value().fixedUpPixelFraction, 1.0);
       EXPECT_NE(std::find(walked.stats.passesRecorded.begin(), walked.stats.passesRecorded.end(),
@@ -408,6 +410,7 @@ TEST_P(EpipolarMarchParts, EightThreadsAgreeWithOne) {
   samples::RenderOptions o = options(Technique::Epipolar);
   o.epipolar->minMaxTree = c.tree;
   o.frames = 3;  // the sample counts of a frame are read when its slot comes round again
+  o.fullFloatTargets = true;  // the two marches compared below half-float rounding
   o.marchThreadsPerSample = 1;
   const samples::RenderResult one = renderWithAovs(scene, o);
   o.marchThreadsPerSample = 8;

@@ -41,6 +41,7 @@ TEST(LightColor, ConstantColourScalesEveryTechnique) {
     o.height = 72;
     o.shadowMapSize = 512;
     o.technique = technique;
+    o.fullFloatTargets = true;  // the two results compared below half-float rounding
     scene.light.colorTexture.clear();
     const samples::RenderResult white = renderWithAovs(scene, o);
     scene.light.colorTexture = texture.path;
@@ -97,6 +98,7 @@ TEST_P(LightColorChunks, MatchTheFineStep) {
   o.technique = Technique::Reference;
   const samples::RenderResult reference = renderWithAovs(scene, o);
   o.technique = Technique::Epipolar;
+  o.fullFloatTargets = true;  // the chunks compared with the fine step below half-float rounding
   o.epipolar = EpipolarSettings{};
   o.epipolar->coloredStep = 1;
   const samples::RenderResult fine = renderWithAovs(scene, o);

@@ -145,7 +145,7 @@ TEST(ReducedResolutionStats, SameDispatchesLessMemory) {
     stats[resolution] = result.stats;
   }
   const Stats& full = stats[ScatteringResolution::Full];
-  const std::uint64_t fullTarget = std::uint64_t{kWidth} * kHeight * 16;  // RGBA32F
+  const std::uint64_t fullTarget = std::uint64_t{kWidth} * kHeight * 8;  // RGBA16F, the epipolar technique's
   for (ScatteringResolution resolution : {ScatteringResolution::Half, ScatteringResolution::Quarter}) {
     const Stats& reduced = stats[resolution];
     const double fraction = resolution == ScatteringResolution::Half ? 0.25 : 0.0625;

@@ -124,15 +124,17 @@ samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOp
 samples::RenderResult renderWithSharedContext(const host::Scene& scene, samples::RenderOptions options) {
   // The device first: function-local statics are destroyed in reverse order, the contexts before it.
   host::Device& device = validatedDevice();
-  using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, VkFormat>;
+  using Key = std::tuple<std::uint32_t, std::uint32_t, std::uint32_t, VkFormat, bool>;
   static std::map<Key, std::unique_ptr<samples::TyndallEffect>> effects;
   samples::RenderResult result;
   std::string error;
   const host::RenderSettings settings = samples::renderSettingsFor(options, true);
-  const Key key{settings.width, settings.height, settings.framesInFlight, settings.backBufferFormat};
+  const Key key{settings.width, settings.height, settings.framesInFlight, settings.backBufferFormat,
+                options.fullFloatTargets};
   std::unique_ptr<samples::TyndallEffect>& effect = effects[key];
   if (!effect) {
-    effect = samples::TyndallEffect::create(device, settings, options.profile, error, PipelineCreation::OnFirstUse);
+    effect = samples::TyndallEffect::create(device, settings, options.profile, error, PipelineCreation::OnFirstUse, 0,
+                                            options.fullFloatTargets);
   }
   if (!effect) {
     ADD_FAILURE() << error;

@@ -51,7 +51,7 @@ host::Object boxObject(const glm::dvec3& center, const glm::dvec3& halfExtents);
 samples::RenderResult renderWithAovs(const host::Scene& scene, samples::RenderOptions options);
 
 /// renderWithAovs through one Tyndall context per process and context description (output size,
-/// frames in flight, back-buffer format), created by the first render that needs it, as an engine
+/// frames in flight, back-buffer format, full-float targets), created by the first render that needs it, as an engine
 /// keeps one context while its scenes and settings change. The context compiles each pipeline on
 /// first use (seconds per pipeline on lavapipe with validation, against well under a second for a
 /// 320×180 frame), so a test that renders many times with one technique compiles its pipelines

@@ -71,10 +71,12 @@ constexpr VkPipelineStageFlags kTargetReaders = kTargetSamplers | VK_PIPELINE_ST
 // Transfer destination: a frame without in-scattering clears L_in instead of running a technique.
 constexpr VkImageUsageFlags kTargetUsage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT |
                                            VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
-// L_in is kept in full float: the Reference is the validation path and the AOVs are compared
-// against double-precision references. The same target holds T for the T AOV's copy once L_in
-// has been composited and copied (Context::Impl::recordAovs): T needs no target of its own.
-constexpr VkFormat kTargetFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+// The L_in target has the format of the technique that writes it (technique.h: half floats for
+// the approximate ones, full floats for the Reference). The AOVs and the debug view are full
+// floats: they are compared against double-precision references. A full-float, full-resolution
+// L_in target holds T for the T AOV's copy once L_in has been composited and copied
+// (Context::Impl::recordAovs); any other goes through the AOV image.
+constexpr VkFormat kOutputFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // Frames a retired L_in target is kept as a spare (about two seconds at 60 Hz).
 constexpr std::uint32_t kSpareTargetFrames = 120;
 
@@ -180,12 +182,20 @@ struct Context::Impl {
   /// (Auto) does not allocate at every switch, and holds one target once it has settled.
   OwnedImage scattering;
   ScatteringResolution resolution = ScatteringResolution::Full;
+  // The profiles' techniques' (ContextTuning::fullFloatTargets), until a frame's lead technique
+  // asks another.
+  VkFormat scatteringFormat = kHalfScatteringFormat;
   bool scatteringUsed = false;
   RetireQueue<OwnedImage> retiredTargets;
-  OwnedImage aovTarget;  // full resolution, for the AOVs of a reduced target; at the first such frame
-  // An additional light's L_in before the light sum adds it to `scattering`: at the first frame
-  // with two lights that run, of the target's extent (one of another extent is retired).
-  OwnedImage lightTarget;
+  // Full resolution and full floats, for the AOVs of a target that is neither; at the first such frame.
+  OwnedImage aovTarget;
+  // An additional light's L_in before the light sum adds it to `scattering`, one per format: at the
+  // first frame with an additional light of that format that runs, of the target's extent (one of
+  // another extent is retired).
+  std::array<OwnedImage, 2> lightTargets;
+  OwnedImage& lightTargetFor(VkFormat format) { return lightTargets[format == kFullScatteringFormat ? 1 : 0]; }
+  /// Whether the AOVs are copied from `aovTarget` rather than from the L_in target itself.
+  bool aovsViaOwnImage() const { return resolution != ScatteringResolution::Full || scatteringFormat != kOutputFormat; }
   Outcome resizeFailure;  // why there are no size-dependent resources (until a resize succeeds)
   OwnedImage debugImage;  // created at the first frame that draws a debug view
   Stats stats;
@@ -206,9 +216,9 @@ struct Context::Impl {
   Outcome ensurePipelines(Technique technique, const FrameDesc& frame);
   Outcome createSizeDependent();
   void destroySizeDependent();
-  /// Makes `scattering` the target of `wanted`'s resolution (a spare or a new image; on failure the
-  /// old one stays).
-  Outcome useResolution(ScatteringResolution wanted);
+  /// Makes `scattering` the target of `wanted`'s resolution in `format` (a spare or a new image; on
+  /// failure the old one stays).
+  Outcome useTarget(ScatteringResolution wanted, VkFormat format);
   void destroyAll();
   Outcome record(VkCommandBuffer cmd, const FrameDesc& frame);
   /// A light that runs its technique this frame: its index (0: FrameDesc::light), the frame as
@@ -224,7 +234,8 @@ struct Context::Impl {
   // target or the light target) is left in GENERAL, written by compute shaders.
   void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const LightRun& run, const OwnedImage& target,
                        VkImageLayout depthLayout, BarrierBatch& release);
-  void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets);
+  void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets,
+                  const std::vector<LightRun>& runs);
 };
 
 Outcome Context::Impl::createSizeIndependent() {
@@ -251,6 +262,7 @@ Outcome Context::Impl::createSizeIndependent() {
   stats.timestampsSupported = timer.supported();
   TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
   resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
+  resources.fullFloatTargets = tuning.fullFloatTargets;
   for (ScatteringTechnique* technique : first.all()) {
     if (Outcome o = technique->create(gpu, resources); !o) return o;
   }
@@ -277,6 +289,7 @@ Outcome Context::Impl::ensureAdditionalLight(std::size_t index) {
   auto created = std::make_unique<LightTechniques>();
   TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
   resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
+  resources.fullFloatTargets = tuning.fullFloatTargets;
   // Destroys what was created when a step fails: nothing half-built is kept.
   auto discard = [&](Outcome failed) {
     for (ScatteringTechnique* t : created->all()) t->destroy(gpu);
@@ -322,18 +335,18 @@ Outcome Context::Impl::ensurePipelines(Technique technique, const FrameDesc& fra
 
 Outcome Context::Impl::createSizeDependent() {
   scatteringUsed = false;
-  return createImage(gpu, kTargetFormat, targetExtentFor(extent, resolution), kTargetUsage, scattering);
+  return createImage(gpu, scatteringFormat, targetExtentFor(extent, resolution), kTargetUsage, scattering);
 }
 
-Outcome Context::Impl::useResolution(ScatteringResolution wanted) {
-  if (wanted == resolution) return {};
+Outcome Context::Impl::useTarget(ScatteringResolution wanted, VkFormat format) {
+  if (wanted == resolution && format == scatteringFormat) return {};
   const VkExtent2D size = targetExtentFor(extent, wanted);
   OwnedImage next;
   if (std::optional<OwnedImage> spare = retiredTargets.take([&](const OwnedImage& image) {
-        return image.extent.width == size.width && image.extent.height == size.height;
+        return image.extent.width == size.width && image.extent.height == size.height && image.format == format;
       })) {
     next = *spare;
-  } else if (Outcome o = createImage(gpu, kTargetFormat, size, kTargetUsage, next); !o) {
+  } else if (Outcome o = createImage(gpu, format, size, kTargetUsage, next); !o) {
     return o;
   }
   if (scatteringUsed) {
@@ -344,12 +357,13 @@ Outcome Context::Impl::useResolution(ScatteringResolution wanted) {
   scattering = next;
   scatteringUsed = false;
   resolution = wanted;
+  scatteringFormat = format;
   return {};
 }
 
 void Context::Impl::destroySizeDependent() {
   forEachInstance([&](ScatteringTechnique& technique) { technique.destroySizeDependent(gpu); });
-  destroyImage(gpu, lightTarget);
+  for (OwnedImage& target : lightTargets) destroyImage(gpu, target);
   destroyImage(gpu, debugImage);
   destroyImage(gpu, aovTarget);
   retiredTargets.destroyAll([&](OwnedImage& image) { destroyImage(gpu, image); });
@@ -395,6 +409,7 @@ Result<std::unique_ptr<Context>> Context::createContext(const ContextDesc& desc)
   auto impl = std::make_unique<Impl>();
   impl->desc = desc;
   if (desc.tuning != nullptr) impl->tuning = *desc.tuning;
+  if (impl->tuning.fullFloatTargets) impl->scatteringFormat = kFullScatteringFormat;
   impl->desc.tuning = nullptr;  // not kept: the host's struct may not outlive this call
   auto fail = [&](Status status, const std::string& message) {
     return impl->fail(failure(status, message));
@@ -603,15 +618,15 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
       frame.debugView != DebugView::None && leadTechnique != nullptr && leadTechnique->drawsDebugViews();
   if (frame.debugView != DebugView::None && !drawsDebugView) note += "; debug view: drawn by the epipolar technique only";
   if (drawsDebugView && debugImage.image == VK_NULL_HANDLE) {
-    if (Outcome o = createImage(gpu, kTargetFormat, extent, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
+    if (Outcome o = createImage(gpu, kOutputFormat, extent, VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                                 debugImage);
         !o) {
       return fail(o);
     }
     report(Severity::Info, "debug view image allocated");
   }
-  // The L_in target at the lead technique's resolution, which every light's technique runs at; a
-  // frame without one keeps the current target.
+  // The L_in target at the lead technique's resolution, which every light's technique runs at, and
+  // in its format; a frame without one keeps the current target.
   stats.resolutionChange = ResolutionChange::None;
   if (leadTechnique != nullptr) {
     const ResolutionRequest asked = leadTechnique->resolution(runs.front().frame, choice);
@@ -621,26 +636,36 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
       wanted = ScatteringResolution::Full;
       stats.resolutionChange = ResolutionChange::LocalLightInView;
     }
-    if (Outcome o = useResolution(wanted); !o) return fail(o);
+    if (Outcome o = useTarget(wanted, leadTechnique->scatteringFormat()); !o) return fail(o);
   }
   retiredTargets.release(stats.frameIndex, desc.maxFramesInFlight + kSpareTargetFrames,
                          [&](OwnedImage& image) { destroyImage(gpu, image); });
   forEachInstance([&](ScatteringTechnique& t) { t.releaseRetired(gpu, stats.frameIndex, desc.maxFramesInFlight); });
   const bool reduced = resolution != ScatteringResolution::Full;
-  if (reduced && aovTarget.image == VK_NULL_HANDLE &&
+  if (aovsViaOwnImage() && aovTarget.image == VK_NULL_HANDLE &&
       (!frame.scatteringOutput.empty() || !frame.transmittanceOutput.empty())) {
-    if (Outcome o = createImage(gpu, kTargetFormat, extent, kTargetUsage, aovTarget); !o) return fail(o);
-    report(Severity::Info, "full-resolution AOV image allocated (the L_in target is at reduced resolution)");
+    if (Outcome o = createImage(gpu, kOutputFormat, extent, kTargetUsage, aovTarget); !o) return fail(o);
+    report(Severity::Info,
+           "full-resolution AOV image allocated (the L_in target is at reduced resolution or in half floats)");
   }
-  if (runs.size() > 1 && (lightTarget.extent.width != scattering.extent.width ||
-                          lightTarget.extent.height != scattering.extent.height)) {
+  for (std::size_t k = 1; k < runs.size(); ++k) {
+    const VkFormat format = runs[k].technique->scatteringFormat();
+    OwnedImage& lightTarget = lightTargetFor(format);
+    if (lightTarget.extent.width == scattering.extent.width && lightTarget.extent.height == scattering.extent.height) {
+      continue;
+    }
     OwnedImage next;
-    if (Outcome o = createImage(gpu, kTargetFormat, scattering.extent, kTargetUsage, next); !o) return fail(o);
+    if (Outcome o = createImage(gpu, format, scattering.extent, kTargetUsage, next); !o) return fail(o);
     if (lightTarget.image != VK_NULL_HANDLE) retiredTargets.retire(stats.frameIndex, lightTarget);
     lightTarget = next;
     report(Severity::Info, "light target allocated (several lights run)");
   }
+  // A half-float target holds L_in scaled to its range; a full-float one as it is (its AOVs are
+  // copied from it).
+  const float targetScale = scatteringFormat == kHalfScatteringFormat ? scatteringTargetScale(setup) : 1.0f;
   for (LightSetup& light : setup.lights) {
+    light.constants.target_scale = targetScale;
+    light.constants.target_unscale = 1.0f / targetScale;
     light.constants.target_extent = glm::uvec2(scattering.extent.width, scattering.extent.height);
     light.constants.target_stride = static_cast<std::uint32_t>(resolution);
     light.constants.target_offset = light.constants.target_stride / 2;
@@ -697,6 +722,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
   stats.walkOverCpuLoopLimit = overLoopLimit;
   stats.debugViewDrawn = drawsDebugView;
   stats.scatteringResolution = resolution;
+  stats.scatteringFormat = scatteringFormat;
   stats.passesRecorded.clear();
   gpu.dispatches = 0;
   gpu.barriers = 0;
@@ -722,7 +748,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     stats.debugViewDrawn = false;
     stats.techniqueNote = techniqueChangeNote(TechniqueChange::NoExtinction);
-    recordAovs(cmd, slot, frame, false);
+    recordAovs(cmd, slot, frame, false, {});
   } else {
     stats.technique = technique;  // None when nothing scatters
     stats.composite = computeComposite ? CompositePath::Compute : CompositePath::Fragment;
@@ -734,7 +760,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     recordScattering(cmd, slot, frame, runs);
     scatteringUsed = true;
-    recordAovs(cmd, slot, frame, true);
+    recordAovs(cmd, slot, frame, true, runs);
     // The host's depth buffer, which recordScattering acquired: read by the technique, the
     // composite and the T AOV's pass.
     imageBarrier(gpu, cmd, frame.depth.image, barrierAspect(frame.depth.format), frame.depth.arrayLayer,
@@ -794,6 +820,7 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
       const std::string prefix = named ? "light" + std::to_string(runs[k].index) + "/" : std::string();
       const std::size_t firstPass = stats.passesRecorded.size();
       timer.setPassPrefix(prefix);
+      OwnedImage& lightTarget = lightTargetFor(runs[k].technique->scatteringFormat());
       recordTechnique(cmd, slot, runs[k], k == 0 ? scattering : lightTarget, depthLayout, release);
       for (std::size_t p = firstPass; p < stats.passesRecorded.size(); ++p) {
         stats.passesRecorded[p].insert(0, prefix);
@@ -811,8 +838,8 @@ void Context::Impl::recordScattering(VkCommandBuffer cmd, std::uint32_t slot, co
                   {VK_IMAGE_LAYOUT_GENERAL, compute, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT});
       timer.beginPass(gpu, cmd, "light_sum");
       toSum.record(gpu, cmd);
-      lightSum.record(gpu, cmd, slot * (kMaxLights - 1) + static_cast<std::uint32_t>(k - 1), scattering.view,
-                      lightTarget.view, scattering.extent);
+      lightSum.record(gpu, cmd, slot * (kMaxLights - 1) + static_cast<std::uint32_t>(k - 1), scattering,
+                      lightTarget);
       timer.endPass(gpu, cmd);
       timer.setPassPrefix({});
       stats.passesRecorded.push_back(prefix + "light_sum");
@@ -940,8 +967,10 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
 
 // Copies L_in and T to the host's AOV images (blit: converts to their format), or, when
 // nothing was computed, clears them to L_in = 0 and T = 1. T has no target of its own: once L_in
-// is composited and copied, its target receives T from the composite's own formula, then is copied.
-void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets) {
+// is composited and copied, the full-float image L_in was copied from receives T from the
+// composite's own formula, then is copied.
+void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets,
+                               const std::vector<LightRun>& runs) {
   if (frame.scatteringOutput.empty() && frame.transmittanceOutput.empty() && frame.debugOutput.empty()) return;
 
   const char* pass = fromTargets ? "aov_output" : "aov_clear";
@@ -967,27 +996,32 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
     gpu.vk.vkCmdBlitImage(cmd, source, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, output.image, layout, 1, &region,
                           VK_FILTER_NEAREST);
   };
-  auto clear = [&](const ImageRef& output, VkImageLayout layout, float value) {
-    const VkClearColorValue color{{value, value, value, 1.0f}};
+  auto clear = [&](const ImageRef& output, VkImageLayout layout, float value, float alpha) {
+    const VkClearColorValue color{{value, value, value, alpha}};
     const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, output.arrayLayer, 1};
     gpu.vk.vkCmdClearColorImage(cmd, output.image, layout, &color, 1, &range);
   };
 
-  // The full-resolution image the AOVs are copied from: the L_in target itself at full resolution,
-  // else the AOV image, which first receives L_in upsampled as the composite added it. `target`:
-  // how the composite (or the previous frame) left it; then as each step below leaves it.
-  const bool reduced = resolution != ScatteringResolution::Full;
-  const OwnedImage& full = reduced ? aovTarget : scattering;
-  ImageUse target = reduced ? ImageUse{VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0}
-                            : ImageUse{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, 0};
+  // The full-resolution, full-float image the AOVs are copied from: the L_in target itself where it
+  // is both, else the AOV image, which first receives L_in (upsampled) as the composite added it.
+  // `target`: how the composite (or the previous frame) left it; then as each step below leaves it.
+  const bool viaOwnImage = aovsViaOwnImage();
+  const OwnedImage& full = viaOwnImage ? aovTarget : scattering;
+  ImageUse target = viaOwnImage ? ImageUse{VK_IMAGE_LAYOUT_UNDEFINED, kTargetReaders, 0}
+                                : ImageUse{VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, kTargetSamplers, 0};
   const ImageUse computeWrite{VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT};
   const VkImageLayout depthLayout = sampledDepthLayout(frame.depth.layout);
   for (const ImageRef* output : {&frame.scatteringOutput, &frame.transmittanceOutput}) {
     if (output->empty()) continue;
     const bool isTransmittance = output == &frame.transmittanceOutput;
     write(*output, [&](VkImageLayout layout) {
-      if (!fromTargets) return clear(*output, layout, isTransmittance ? 1.0f : 0.0f);
-      if (isTransmittance || reduced) {
+      // L_in's alpha is 0, as every technique writes it.
+      if (!fromTargets) {
+        return isTransmittance ? clear(*output, layout, 1.0f, 1.0f) : clear(*output, layout, 0.0f, 0.0f);
+      }
+      // A frame in which nothing scatters cleared L_in: its AOV is that zero, without a copy.
+      if (!isTransmittance && runs.empty()) return clear(*output, layout, 0.0f, 0.0f);
+      if (isTransmittance || viaOwnImage) {
         // L_in's reads (the composite's, its copy's) finish before the image is overwritten.
         imageBarrier(gpu, cmd, full.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, target.stage, 0},
                      computeWrite);
@@ -1012,7 +1046,7 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
     // The debug view, when one was drawn (GENERAL, written by compute); otherwise black.
     const bool drawn = fromTargets && stats.debugViewDrawn;
     write(frame.debugOutput, [&](VkImageLayout layout) {
-      if (!drawn) return clear(frame.debugOutput, layout, 0.0f);
+      if (!drawn) return clear(frame.debugOutput, layout, 0.0f, 1.0f);
       imageBarrier(gpu, cmd, debugImage.image, VK_IMAGE_ASPECT_COLOR_BIT, 0,
                    {VK_IMAGE_LAYOUT_GENERAL, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT},
                    {VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT});

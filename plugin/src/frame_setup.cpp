@@ -1,5 +1,6 @@
 #include "frame_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -391,6 +392,8 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
   k.target_extent = k.output_extent;  // full resolution until the context sets the technique's
   k.target_stride = 1;
   k.target_offset = 0;
+  k.target_scale = 1.0f;  // until the context knows the target's format (scatteringTargetScale)
+  k.target_unscale = 1.0f;
   // Each light: the shared constants with its own fields, and whether it has anything to add.
   const bool mediumScatters = glm::length(scattering) > 0.0f;
   for (LightSetup& l : out.lights) {
@@ -416,6 +419,32 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
     }
   }
   return {};
+}
+
+float scatteringTargetScale(const FrameSetup& setup) {
+  constexpr double kInverseFourPi = 0.25 / 3.14159265358979323846;
+  // Powers of two whose products with any float L_in stay within float range.
+  constexpr int kLargestExponent = 64;
+  double typical = 0.0;
+  for (const LightSetup& l : setup.lights) {
+    if (l.skipped != LightSkipped::No) continue;
+    const gpu::FrameConstants& k = l.constants;
+    const glm::dvec3 camera(k.view_to_world[3]);
+    double length = l.light.type == LightType::Directional
+                        ? (setup.projection.infiniteFar ? double(k.sky_distance) : setup.projection.farDistance)
+                        : glm::length(glm::dvec3(k.light_position) - camera);
+    length = std::max(length, setup.projection.nearDistance);
+    const double irradiance = l.light.type == LightType::Directional ? 1.0 : 1.0 / (length * length);
+    for (int c = 0; c < 3; ++c) {
+      double scattering = 0.0;
+      for (std::uint32_t i = 0; i < k.medium_component_count; ++i) scattering += k.medium[i].scattering[c];
+      const double path = k.extinction[c] > 0.0f ? std::min(1.0 / double(k.extinction[c]), length) : length;
+      typical = std::max(typical, double(k.light_radiance[c]) * irradiance * scattering * path * kInverseFourPi);
+    }
+  }
+  if (!(typical > 0.0) || !std::isfinite(typical)) return 1.0f;
+  const int exponent = std::clamp(-static_cast<int>(std::lround(std::log2(typical))), -kLargestExponent, kLargestExponent);
+  return std::ldexp(1.0f, exponent);
 }
 
 }  // namespace tyndall

@@ -37,4 +37,12 @@ struct FrameSetup {
 Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& frame,
                      FrameSetup& out);
 
+/// The power of two the frame's half-float L_in targets hold L_in times (FrameConstants::target_scale):
+/// the reciprocal of a typical L_in of the frame's brightest light that runs, E · σ_s · ℓ / 4π with
+/// ℓ = min(1/σ_t, D) for the channel that gives most (D: the far distance, or the sky's, for a
+/// directional light; the camera's distance d from a spot or point light, whose E is I/d² there).
+/// 1 when no light runs. An estimate within a few powers of two is enough: half floats keep 2⁻¹¹
+/// relative precision from 2⁻¹⁴ to 2¹⁵ times it.
+float scatteringTargetScale(const FrameSetup& setup);
+
 }  // namespace tyndall

@@ -26,6 +26,14 @@ constexpr VkExtent2D targetExtentFor(VkExtent2D output, ScatteringResolution res
   return {(output.width + stride - 1) / stride, (output.height + stride - 1) / stride};
 }
 
+/// The L_in target's formats. The approximate techniques write half floats unless
+/// ContextTuning::fullFloatTargets: their error is orders of magnitude above its rounding (2⁻¹¹
+/// relative) and it halves the frame's largest allocation (shaders/common/scattering_target.glsl
+/// clamps to its range). The Reference, the validation path whose AOVs are compared against
+/// double-precision references, keeps full floats.
+constexpr VkFormat kHalfScatteringFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
+constexpr VkFormat kFullScatteringFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
 /// A technique's L_in resolution and the fewest target rows it runs with (resolutionForRows).
 struct ResolutionRequest {
   ScatteringResolution resolution = ScatteringResolution::Full;
@@ -38,6 +46,7 @@ struct TechniqueResources {
   VkSampler linear = VK_NULL_HANDLE;   ///< linear, clamp to edge (the light-colour texture's)
   std::uint32_t slots = 1;             ///< frames in flight: one descriptor set and constant buffer each
   std::uint32_t marchThreadsPerSample = 0;  ///< ContextTuning::marchThreadsPerSample (0: by device)
+  bool fullFloatTargets = false;            ///< ContextTuning::fullFloatTargets
 };
 
 /// What a technique's frame is made from.
@@ -80,6 +89,8 @@ class ScatteringTechnique {
   [[nodiscard]] virtual ResolutionRequest resolution(const FrameDesc& /*frame*/, const ProfileChoice& /*choice*/) const {
     return {};
   }
+  /// The format of the L_in target it writes (its shaders' storage-image qualifier).
+  [[nodiscard]] virtual VkFormat scatteringFormat() const = 0;
   /// Records with `owner`'s pipelines from now on, compiling none of its own: an additional light's
   /// instance needs its own descriptor sets, buffers and textures, not its own pipelines. `owner`,
   /// the same technique's first-light instance, compiles them and outlives this one.

@@ -303,7 +303,7 @@ bool renderScene(host::Device& device, const host::Scene& scene, const RenderOpt
   std::unique_ptr<TyndallEffect> effect;
   if (!options.noEffect) {
     effect = TyndallEffect::create(device, renderSettingsFor(options, wantAovs), options.profile, error,
-                                   options.pipelineCreation, options.marchThreadsPerSample);
+                                   options.pipelineCreation, options.marchThreadsPerSample, options.fullFloatTargets);
     if (!effect) return false;
   }
   return renderSceneWith(device, scene, options, wantAovs, effect.get(), result, error);
@@ -355,6 +355,9 @@ std::string timingsJson(const RenderOptions& options, const RenderResult& result
   json["composite"] = to_string(result.stats.composite);
   json["scatteringResolution"] = to_string(result.stats.scatteringResolution);
   json["resolutionChange"] = to_string(result.stats.resolutionChange);
+  json["scatteringFormat"] = result.stats.scatteringFormat == VK_FORMAT_R16G16B16A16_SFLOAT   ? "R16G16B16A16_SFLOAT"
+                             : result.stats.scatteringFormat == VK_FORMAT_R32G32B32A32_SFLOAT ? "R32G32B32A32_SFLOAT"
+                                                                                              : "none";
   json["dispatches"] = result.stats.dispatches;
   json["barriers"] = result.stats.barriers;
   if (!result.stats.lights.empty() && result.stats.lights[0].translucentLayers > 0) {

@@ -52,6 +52,9 @@ struct RenderOptions {
   PipelineCreation pipelineCreation = PipelineCreation::AtCreate;
   /// --march-threads: ContextDesc::marchThreadsPerSample (0: by device).
   std::uint32_t marchThreadsPerSample = 0;
+  /// ContextTuning::fullFloatTargets (not on the command line): for tests that compare the
+  /// approximate techniques' passes with the Reference finer than half-float rounding.
+  bool fullFloatTargets = false;
 };
 
 /// Parses argv. Returns false with a one-line reason; `help` is set for --help.

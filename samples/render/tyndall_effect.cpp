@@ -92,11 +92,11 @@ ContextDesc contextDescFor(host::Device& device, const host::RenderSettings& set
 std::unique_ptr<TyndallEffect> TyndallEffect::create(host::Device& device, const host::RenderSettings& settings,
                                                      Profile profile, std::string& error,
                                                      PipelineCreation pipelineCreation,
-                                                     std::uint32_t marchThreadsPerSample) {
+                                                     std::uint32_t marchThreadsPerSample, bool fullFloatTargets) {
   auto effect = std::unique_ptr<TyndallEffect>(new TyndallEffect());
   effect->profile_ = profile;
   ContextDesc desc = contextDescFor(device, settings);
-  const ContextTuning tuning{pipelineCreation, marchThreadsPerSample};
+  const ContextTuning tuning{pipelineCreation, marchThreadsPerSample, fullFloatTargets};
   desc.tuning = &tuning;
   desc.messageCallback = &TyndallEffect::onMessage;
   desc.messageUserData = effect.get();

@@ -18,7 +18,8 @@ class TyndallEffect final : public host::PostProcessEffect {
   static std::unique_ptr<TyndallEffect> create(host::Device& device, const host::RenderSettings& settings,
                                                Profile profile, std::string& error,
                                                PipelineCreation pipelineCreation = PipelineCreation::AtCreate,
-                                               std::uint32_t marchThreadsPerSample = 0);
+                                               std::uint32_t marchThreadsPerSample = 0,
+                                               bool fullFloatTargets = false);
 
   bool record(VkCommandBuffer cmd, const host::PostProcessInputs& inputs, std::string& error) override;
   bool resize(VkExtent2D extent, std::string& error) override;

@@ -68,13 +68,16 @@ struct FrameConstants {
   mat4 clip_to_view;                         // inverse of the host's projection
   mat4 world_to_shadow[TYN_MAX_SHADOW_MAPS]; // world → shadow clip (depth [0,1])
   vec3 light_position;     // spot/point position (scene units)
-  float pad0;
+  // The L_in targets hold L_in · target_scale, a power of two that brings the frame's typical L_in
+  // near 1 (frame_setup.cpp, scatteringTargetScale): half floats keep their 2^-11 relative
+  // precision from 2^-14 to 2^15 times it whatever the lights' units. Every light's is the frame's.
+  float target_scale;
   vec3 light_direction;    // unit direction the light travels (directional, spot)
   float cos_outer_cone;    // spot: cos of the outer half-angle (falloff 0 outside)
   vec3 light_radiance;     // colour · intensity
   float cos_inner_cone;    // spot: cos of the inner half-angle (falloff 1 inside)
   vec3 extinction;         // σ_t = Σ (σ_s + σ_a) per scene unit
-  float pad1;
+  float target_unscale;    // 1 / target_scale (exact: a power of two)
   MediumComponentConstants medium[TYN_MAX_MEDIUM_COMPONENTS];
   float near_ndc_depth;    // NDC depth of the near plane
   float far_ndc_depth;     // NDC depth of the far plane (the sky)

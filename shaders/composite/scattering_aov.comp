@@ -1,7 +1,8 @@
 #version 460
 // The L_in AOV (FrameDesc::scatteringOutput) of a frame whose L_in target is at reduced
-// resolution: every output pixel's L_in as the composite added it (composite/upsample.glsl), into a
-// full-resolution storage image that is then copied to the host's image. It binds like the compute
+// resolution or in half floats: every output pixel's L_in as the composite added it
+// (composite/upsample.glsl), into a full-resolution, full-float storage image that is then copied
+// to the host's image. It binds like the compute
 // composite, the output in the back buffer's place.
 #extension GL_GOOGLE_include_directive : require
 
@@ -21,5 +22,5 @@ void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
   if (any(greaterThanEqual(pixel, frame.output_extent))) return;
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
-  imageStore(out_scattering, ivec2(pixel), vec4(tyn_upsampled_in_scattering(pixel, depth), 1.0));
+  imageStore(out_scattering, ivec2(pixel), vec4(tyn_upsampled_in_scattering(pixel, depth), 0.0));
 }

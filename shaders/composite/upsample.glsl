@@ -1,5 +1,5 @@
 // L_in at an output pixel from the L_in target: read directly at full resolution, upsampled with
-// common/upsample.h's joint bilateral weights otherwise. Needs `frame`, `depth_buffer` and
+// common/upsample.h's joint bilateral weights otherwise; unscaled (FrameConstants::target_scale). Needs `frame`, `depth_buffer` and
 // `in_scattering` (the target, sampled) in scope, and common/view_ray.glsl.
 #ifndef TYNDALL_UPSAMPLE_GLSL
 #define TYNDALL_UPSAMPLE_GLSL
@@ -7,7 +7,7 @@
 #include "common/upsample.h"
 
 vec3 tyn_upsampled_in_scattering(uvec2 pixel, float depth) {
-  if (frame.target_stride == 1u) return texelFetch(in_scattering, ivec2(pixel), 0).rgb;
+  if (frame.target_stride == 1u) return texelFetch(in_scattering, ivec2(pixel), 0).rgb * frame.target_unscale;
   vec2 position = tyn_upsample_position(pixel, frame.target_stride, frame.target_offset);
   ivec2 base = ivec2(floor(position));
   vec2 f = position - vec2(base);
@@ -24,7 +24,7 @@ vec3 tyn_upsampled_in_scattering(uvec2 pixel, float depth) {
   for (int i = 0; i < 4; ++i) {
     if (w[i] > 0.0) sum += w[i] * texelFetch(in_scattering, taps[i], 0).rgb;
   }
-  return sum;
+  return sum * frame.target_unscale;
 }
 
 #endif

@@ -6,6 +6,7 @@
 #include "epipolar/epipolar_constants.h"
 
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FRAME, std140) uniform FrameBlock { FrameConstants frame; };
+#include "common/scattering_target.glsl"
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_DEPTH) uniform sampler2D depth_buffer;
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SHADOW_MAPS) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 // (entry.xy, exit.xy) per slice, NDC; TYN_EPIPOLAR_INVALID_COORD for a culled slice.
@@ -19,7 +20,8 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_COORDINATES, rgba32f) uniform ima
 #endif
 // Per (sample, slice): L_in of the ray-marched sample.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SAMPLE_SCATTERING, rgba32f) uniform image2D epipolar_scattering;
-layout(set = 0, binding = TYN_EPIPOLAR_BINDING_OUT_SCATTERING, rgba32f) uniform image2D out_scattering;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_OUT_SCATTERING, TYN_SCATTERING_TARGET_FORMAT) uniform image2D
+    out_scattering;
 // Nearest and farthest depth per block of tyn_shadow_block_size()² texels of each shadow map,
 // map m's in rows [m · side, (m + 1) · side) (shadow_blocks.comp), for a directional light's fix-up
 // and the march and fix-up of a light whose maps are walked (block_walk.glsl); 1 × 1 otherwise.

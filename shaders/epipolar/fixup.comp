@@ -55,7 +55,7 @@ void fix_up(uint index, bool writer) {
   tyn_fixup_pixel_steps = peak ? 0u : epipolar.fixup_steps;
   vec3 in_scattering = TYN_FIXUP_SERIAL ? tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance)
                                         : tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
-  if (writer) imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  if (writer) imageStore(out_scattering, ivec2(pixel), tyn_target_value(in_scattering));
 }
 
 void main() {

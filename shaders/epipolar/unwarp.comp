@@ -190,7 +190,7 @@ void tyn_unwarp(uvec2 target_pixel) {
   slice_edge = slice_edge || along_edge;
 
   if (weight_sum >= epipolar.fixup_weight_threshold && !near_epipole && !slice_edge) {
-    imageStore(out_scattering, ivec2(target_pixel), vec4(sum / weight_sum, 0.0));
+    imageStore(out_scattering, ivec2(target_pixel), tyn_target_value(sum / weight_sum));
   } else {
     uint slot = atomicAdd(fixup_count, 1u);
     fixup_pixels[slot] = target_pixel.x | (target_pixel.y << 16);

@@ -19,5 +19,5 @@ void main() {
   float depth = texelFetch(depth_buffer, ivec2(output_pixel), 0).r;
   TynViewRay ray = tyn_view_ray(output_pixel, depth);
   vec3 in_scattering = tyn_split_in_scattering(ray.origin, ray.direction, ray.surface_distance);
-  if (gl_LocalInvocationID.x == 0u) imageStore(out_scattering, pixel, vec4(in_scattering, 0.0));
+  if (gl_LocalInvocationID.x == 0u) imageStore(out_scattering, pixel, tyn_target_value(in_scattering));
 }

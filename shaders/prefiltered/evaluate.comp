@@ -312,7 +312,8 @@ void main() {
   // of its row is a handful of texels of the rectified map, too few for the reconstruction; its
   // stretch across the host's map is as short, so it takes the Reference's walk instead.
   if (uvd.x * columns < float(pf.short_ray_columns)) {
-    imageStore(out_scattering, ivec2(pixel), vec4(tyn_reference_in_scattering(ray.origin, ray.direction, s), 0.0));
+    vec3 in_scattering = tyn_reference_in_scattering(ray.origin, ray.direction, s);
+    imageStore(out_scattering, ivec2(pixel), tyn_target_value(in_scattering));
     return;
   }
   float v = tyn_pf_lookup_v(uvd.y);
@@ -432,5 +433,5 @@ void main() {
   vec3 radiance_factor =
       frame.light_radiance * tyn_phase_weighted_scattering(dot(ray.direction, to_light));
   vec3 in_scattering = tyn_prefiltered_inscattering(radiance_factor, visibility, s, frame.extinction);
-  imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  imageStore(out_scattering, ivec2(pixel), tyn_target_value(in_scattering));
 }

@@ -9,10 +9,11 @@
 #include "prefiltered/depth_bounds.h"
 
 layout(set = 0, binding = TYN_PF_BINDING_FRAME, std140) uniform FrameBlock { FrameConstants frame; };
+#include "common/scattering_target.glsl"
 layout(set = 0, binding = TYN_PF_BINDING_DEPTH) uniform sampler2D depth_buffer;
 layout(set = 0, binding = TYN_PF_BINDING_SHADOW_MAPS) uniform sampler2D shadow_maps[TYN_MAX_SHADOW_MAPS];
 layout(set = 0, binding = TYN_PF_BINDING_CONSTANTS, std140) uniform PrefilteredBlock { PrefilteredConstants pf; };
-layout(set = 0, binding = TYN_PF_BINDING_OUT_SCATTERING, rgba32f) uniform image2D out_scattering;
+layout(set = 0, binding = TYN_PF_BINDING_OUT_SCATTERING, TYN_SCATTERING_TARGET_FORMAT) uniform image2D out_scattering;
 // The light-colour texture (common/light_color.glsl), read by the epipole block's Reference walk.
 layout(set = 0, binding = TYN_PF_BINDING_LIGHT_COLOR) uniform sampler2D light_color;
 // Four moments of the host's signed depth, Θ4*-quantized (RGBA16_UNORM), bilinear, clamped to the edge.

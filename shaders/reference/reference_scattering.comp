@@ -30,6 +30,6 @@ void main() {
   float depth = texelFetch(depth_buffer, ivec2(pixel), 0).r;
   TynViewRay ray = tyn_view_ray(pixel, depth);
   vec3 in_scattering = tyn_reference_in_scattering(ray.origin, ray.direction, ray.surface_distance);
-  imageStore(out_scattering, ivec2(pixel), vec4(in_scattering, 0.0));
+  imageStore(out_scattering, ivec2(pixel), vec4(in_scattering * frame.target_scale, 0.0));
   if (tyn_translucent_overflowed) atomicOr(translucent_overflow, 1u);
 }

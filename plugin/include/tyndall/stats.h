@@ -186,6 +186,10 @@ struct Stats {
   /// The resolution L_in was computed at in the last frame (the composite upsampled it below Full).
   ScatteringResolution scatteringResolution = ScatteringResolution::Full;
   ResolutionChange resolutionChange = ResolutionChange::None;  ///< why it is finer than asked
+  /// The L_in target's format in the last frame: R16G16B16A16_SFLOAT when its first running light
+  /// ran an approximate technique, R32G32B32A32_SFLOAT when that light ran the Reference or with
+  /// ContextTuning::fullFloatTargets (docs/INTEGRATION.md "Device memory").
+  VkFormat scatteringFormat = VK_FORMAT_UNDEFINED;
   std::uint32_t dispatches = 0;  ///< compute dispatches (direct and indirect) the last `record` recorded
   std::uint32_t barriers = 0;    ///< pipeline barriers the last `record` recorded
   FrameTimings lastTimings;                     ///< most recent frame whose timestamps were available

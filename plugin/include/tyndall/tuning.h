@@ -221,6 +221,10 @@ struct ContextTuning {
   /// do not fill one, docs/EPIPOLAR.md); else a power of two up to 64. With 1 the fix-up walks a
   /// directional light's pixels one per thread too; otherwise each pixel's walk is split over 64.
   std::uint32_t marchThreadsPerSample = 0;
+  /// L_in targets in R32G32B32A32_SFLOAT for every technique: for comparisons against the Reference
+  /// finer than half-float rounding (2⁻¹¹ relative). Default: the epipolar and prefiltered
+  /// techniques write R16G16B16A16_SFLOAT (half the memory; docs/INTEGRATION.md "Device memory").
+  bool fullFloatTargets = false;
 };
 
 }  // namespace tyndall

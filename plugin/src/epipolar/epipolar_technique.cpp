@@ -133,6 +133,7 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, const TechniqueResources& reso
   const std::uint32_t slots = resources.slots;
   // A CPU driver runs the same work serially; a GPU needs several threads per marched sample to
   // fill it (docs/EPIPOLAR.md).
+  fullFloatTargets_ = resources.fullFloatTargets;
   marchParts_ = resources.marchThreadsPerSample != 0 ? resources.marchThreadsPerSample
                 : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1u
                                                                            : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
@@ -193,7 +194,8 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 5> pipelines{{
       {&scatteringLutPipeline_, shaders::scattering_lut_comp()},
       {&shadowBlocksPipeline_, shaders::shadow_blocks_comp()},
-      {&debugBackgroundPipeline_, shaders::debug_background_comp()},
+      {&debugBackgroundPipeline_,
+       fullFloatTargets_ ? shaders::debug_background_rgba32f_comp() : shaders::debug_background_comp()},
       {&debugSamplesPipeline_, shaders::debug_samples_comp()},
       {&debugFixupPipeline_, shaders::debug_fixup_comp()},
   }};
@@ -213,8 +215,9 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   // The one-thread-per-pixel fix-up only where the march runs one thread per sample (serialFixup).
   for (std::uint32_t serial = 0; serial <= (marchParts_ == 1 ? 1u : 0u); ++serial) {
     const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> walk{{{kFixupSerialConstantId, serial}}};
-    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::unwarp_comp(), walk, unwarpPipelines_[serial]);
-        !o) {
+    const std::span<const std::uint32_t> unwarp =
+        fullFloatTargets_ ? shaders::unwarp_rgba32f_comp() : shaders::unwarp_comp();
+    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, unwarp, walk, unwarpPipelines_[serial]); !o) {
       return o;
     }
   }
@@ -246,8 +249,8 @@ Outcome EpipolarTechnique::ensureLightPipelines(const Gpu& gpu, LightType light,
     compiled = true;
     const std::array<std::pair<std::uint32_t, std::uint32_t>, 2> constants{
         {{kLightTypeConstantId, type}, {kFixupSerialConstantId, serialFixup(marchParts_, light) ? 1u : 0u}}};
-    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, shaders::fixup_comp(), constants,
-                                              fixupPipelines_[type]);
+    const std::span<const std::uint32_t> fixup = fullFloatTargets_ ? shaders::fixup_rgba32f_comp() : shaders::fixup_comp();
+    if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, fixup, constants, fixupPipelines_[type]);
         !o) {
       return o;
     }

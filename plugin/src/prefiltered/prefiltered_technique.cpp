@@ -160,6 +160,7 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
 }
 
 Outcome PrefilteredTechnique::create(const Gpu& gpu, const TechniqueResources& resources) {
+  fullFloatTargets_ = resources.fullFloatTargets;
   const VkSampler nearest = resources.nearest;
   const VkSampler linear = resources.linear;
   const std::uint32_t slots = resources.slots;
@@ -241,7 +242,11 @@ Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
   };
   if (Outcome o = make(shaders::moment_shadow_map_comp(), momentMapPipeline_); !o) return o;
   if (Outcome o = make(shaders::epipole_fixup_args_comp(), fixupArgsPipeline_); !o) return o;
-  if (Outcome o = make(shaders::epipole_fixup_comp(), fixupPipeline_); !o) return o;
+  const bool full = fullFloatTargets_;
+  if (Outcome o = make(full ? shaders::epipole_fixup_rgba32f_comp() : shaders::epipole_fixup_comp(), fixupPipeline_);
+      !o) {
+    return o;
+  }
   // prefix_sums.glsl's workgroup size and walk per PrefixSumScheme (kPrefixSumSchemes).
   const std::array<VkSpecializationMapEntry, 3> schemeEntries{{{0, 0, 4}, {1, 4, 4}, {2, 8, 4}}};
   // evaluate.comp's storage variant (constant_id 0).
@@ -254,7 +259,11 @@ Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
       if (Outcome o = make(kStorage[i].prefixSums(), prefixSumPipelines_[scheme][i], &spec); !o) return o;
     }
     const VkSpecializationInfo basisSpec{1, &basisEntry, sizeof(i), &i};
-    if (Outcome o = make(shaders::evaluate_comp(), evaluatePipelines_[i], &basisSpec); !o) return o;
+    if (Outcome o = make(full ? shaders::evaluate_rgba32f_comp() : shaders::evaluate_comp(), evaluatePipelines_[i],
+                         &basisSpec);
+        !o) {
+      return o;
+    }
   }
 
   pipelinesReady_ = true;

@@ -23,6 +23,7 @@ class ReferenceTechnique final : public ScatteringTechnique {
   /// Updates the slot's descriptors and dispatches one thread per pixel.
   void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
   [[nodiscard]] const char* singlePassName() const override { return "reference_scattering"; }
+  [[nodiscard]] VkFormat scatteringFormat() const override { return kFullScatteringFormat; }
   /// Stats::translucentLayersOverflowed from the slot's previous frame with translucent layers.
   void readBackFlags(std::uint32_t slot, Stats& stats) override;
   void destroy(const Gpu& gpu) override;

@@ -209,6 +209,13 @@ struct Context::Impl {
   }
 
   Outcome createSizeIndependent();
+  /// What every technique instance is created with (the first light's and each additional one's).
+  TechniqueResources techniqueResources() const {
+    TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
+    resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
+    resources.scatteringFormat = tuning.fullFloatTargets ? kFullScatteringFormat : kHalfScatteringFormat;
+    return resources;
+  }
   /// The techniques and constants of additional light `index` (≥ 1), created the first time.
   Outcome ensureAdditionalLight(std::size_t index);
   Outcome warmUp();
@@ -234,8 +241,7 @@ struct Context::Impl {
   // target or the light target) is left in GENERAL, written by compute shaders.
   void recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, const LightRun& run, const OwnedImage& target,
                        VkImageLayout depthLayout, BarrierBatch& release);
-  void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets,
-                  const std::vector<LightRun>& runs);
+  void recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets);
 };
 
 Outcome Context::Impl::createSizeIndependent() {
@@ -260,9 +266,7 @@ Outcome Context::Impl::createSizeIndependent() {
   }
   if (Outcome o = timer.create(gpu, desc.maxFramesInFlight, desc.queueFamilyIndex); !o) return o;
   stats.timestampsSupported = timer.supported();
-  TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
-  resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
-  resources.fullFloatTargets = tuning.fullFloatTargets;
+  const TechniqueResources resources = techniqueResources();
   for (ScatteringTechnique* technique : first.all()) {
     if (Outcome o = technique->create(gpu, resources); !o) return o;
   }
@@ -287,9 +291,7 @@ Outcome Context::Impl::ensureAdditionalLight(std::size_t index) {
   std::unique_ptr<LightTechniques>& light = additional[index - 1];
   if (light) return {};
   auto created = std::make_unique<LightTechniques>();
-  TechniqueResources resources{nearest, linear, desc.maxFramesInFlight};
-  resources.marchThreadsPerSample = tuning.marchThreadsPerSample;
-  resources.fullFloatTargets = tuning.fullFloatTargets;
+  const TechniqueResources resources = techniqueResources();
   // Destroys what was created when a step fails: nothing half-built is kept.
   auto discard = [&](Outcome failed) {
     for (ScatteringTechnique* t : created->all()) t->destroy(gpu);
@@ -409,7 +411,7 @@ Result<std::unique_ptr<Context>> Context::createContext(const ContextDesc& desc)
   auto impl = std::make_unique<Impl>();
   impl->desc = desc;
   if (desc.tuning != nullptr) impl->tuning = *desc.tuning;
-  if (impl->tuning.fullFloatTargets) impl->scatteringFormat = kFullScatteringFormat;
+  impl->scatteringFormat = impl->techniqueResources().scatteringFormat;
   impl->desc.tuning = nullptr;  // not kept: the host's struct may not outlive this call
   auto fail = [&](Status status, const std::string& message) {
     return impl->fail(failure(status, message));
@@ -748,7 +750,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     stats.debugViewDrawn = false;
     stats.techniqueNote = techniqueChangeNote(TechniqueChange::NoExtinction);
-    recordAovs(cmd, slot, frame, false, {});
+    recordAovs(cmd, slot, frame, false);
   } else {
     stats.technique = technique;  // None when nothing scatters
     stats.composite = computeComposite ? CompositePath::Compute : CompositePath::Fragment;
@@ -760,7 +762,7 @@ Outcome Context::Impl::record(VkCommandBuffer cmd, const FrameDesc& frame) {
     }
     recordScattering(cmd, slot, frame, runs);
     scatteringUsed = true;
-    recordAovs(cmd, slot, frame, true, runs);
+    recordAovs(cmd, slot, frame, true);
     // The host's depth buffer, which recordScattering acquired: read by the technique, the
     // composite and the T AOV's pass.
     imageBarrier(gpu, cmd, frame.depth.image, barrierAspect(frame.depth.format), frame.depth.arrayLayer,
@@ -969,8 +971,7 @@ void Context::Impl::recordTechnique(VkCommandBuffer cmd, std::uint32_t slot, con
 // nothing was computed, clears them to L_in = 0 and T = 1. T has no target of its own: once L_in
 // is composited and copied, the full-float image L_in was copied from receives T from the
 // composite's own formula, then is copied.
-void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets,
-                               const std::vector<LightRun>& runs) {
+void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const FrameDesc& frame, bool fromTargets) {
   if (frame.scatteringOutput.empty() && frame.transmittanceOutput.empty() && frame.debugOutput.empty()) return;
 
   const char* pass = fromTargets ? "aov_output" : "aov_clear";
@@ -1020,7 +1021,7 @@ void Context::Impl::recordAovs(VkCommandBuffer cmd, std::uint32_t slot, const Fr
         return isTransmittance ? clear(*output, layout, 1.0f, 1.0f) : clear(*output, layout, 0.0f, 0.0f);
       }
       // A frame in which nothing scatters cleared L_in: its AOV is that zero, without a copy.
-      if (!isTransmittance && runs.empty()) return clear(*output, layout, 0.0f, 0.0f);
+      if (!isTransmittance && stats.technique == Technique::None) return clear(*output, layout, 0.0f, 0.0f);
       if (isTransmittance || viaOwnImage) {
         // L_in's reads (the composite's, its copy's) finish before the image is overwritten.
         imageBarrier(gpu, cmd, full.image, VK_IMAGE_ASPECT_COLOR_BIT, 0, {VK_IMAGE_LAYOUT_UNDEFINED, target.stage, 0},

@@ -382,6 +382,8 @@ Outcome prepareFrame(const Gpu& gpu, VkExtent2D outputExtent, const FrameDesc& f
     k.medium[i].phase_type = static_cast<std::uint32_t>(c.phase);
   }
   k.extinction = extinction;
+  out.scattering = scattering;
+  out.extinction = extinction;
   k.near_ndc_depth = out.projection.nearNdc;
   k.far_ndc_depth = out.projection.farNdc;
   k.far_at_infinity = out.projection.infiniteFar ? 1u : 0u;
@@ -436,10 +438,10 @@ float scatteringTargetScale(const FrameSetup& setup) {
     length = std::max(length, setup.projection.nearDistance);
     const double irradiance = l.light.type == LightType::Directional ? 1.0 : 1.0 / (length * length);
     for (int c = 0; c < 3; ++c) {
-      double scattering = 0.0;
-      for (std::uint32_t i = 0; i < k.medium_component_count; ++i) scattering += k.medium[i].scattering[c];
-      const double path = k.extinction[c] > 0.0f ? std::min(1.0 / double(k.extinction[c]), length) : length;
-      typical = std::max(typical, double(k.light_radiance[c]) * irradiance * scattering * path * kInverseFourPi);
+      const double sigmaT = setup.extinction[c];
+      const double path = sigmaT > 0.0 ? std::min(1.0 / sigmaT, length) : length;
+      typical = std::max(typical, double(k.light_radiance[c]) * irradiance * double(setup.scattering[c]) * path *
+                                      kInverseFourPi);
     }
   }
   if (!(typical > 0.0) || !std::isfinite(typical)) return 1.0f;

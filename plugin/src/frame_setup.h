@@ -27,6 +27,8 @@ struct LightSetup {
 struct FrameSetup {
   std::vector<LightSetup> lights;   ///< FrameDesc::light, then FrameDesc::additionalLights
   ProjectionInfo projection;
+  glm::vec3 scattering{0.0f};  ///< the medium's σ_s, summed over its components
+  glm::vec3 extinction{0.0f};  ///< the medium's σ_t
   bool scatters = false;    ///< some light is not skipped: there is in-scattering to compute
   bool attenuates = false;  ///< some σ_t > 0: the back buffer changes at all
 };

@@ -46,7 +46,9 @@ struct TechniqueResources {
   VkSampler linear = VK_NULL_HANDLE;   ///< linear, clamp to edge (the light-colour texture's)
   std::uint32_t slots = 1;             ///< frames in flight: one descriptor set and constant buffer each
   std::uint32_t marchThreadsPerSample = 0;  ///< ContextTuning::marchThreadsPerSample (0: by device)
-  bool fullFloatTargets = false;            ///< ContextTuning::fullFloatTargets
+  /// The L_in target format the approximate techniques write: kHalfScatteringFormat, or
+  /// kFullScatteringFormat with ContextTuning::fullFloatTargets.
+  VkFormat scatteringFormat = kHalfScatteringFormat;
 };
 
 /// What a technique's frame is made from.

@@ -131,9 +131,9 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, const TechniqueResources& reso
   const VkSampler nearest = resources.nearest;
   const VkSampler linear = resources.linear;
   const std::uint32_t slots = resources.slots;
+  scatteringFormat_ = resources.scatteringFormat;
   // A CPU driver runs the same work serially; a GPU needs several threads per marched sample to
   // fill it (docs/EPIPOLAR.md).
-  fullFloatTargets_ = resources.fullFloatTargets;
   marchParts_ = resources.marchThreadsPerSample != 0 ? resources.marchThreadsPerSample
                 : gpu.properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1u
                                                                            : gpu::TYN_EPIPOLAR_MARCH_PARTS_GPU;
@@ -191,11 +191,11 @@ Outcome EpipolarTechnique::create(const Gpu& gpu, const TechniqueResources& reso
 
 Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   if (commonReady_) return {};
+  const bool full = scatteringFormat_ == kFullScatteringFormat;  // the passes that bind the L_in target
   const std::array<std::pair<VkPipeline*, std::span<const std::uint32_t>>, 5> pipelines{{
       {&scatteringLutPipeline_, shaders::scattering_lut_comp()},
       {&shadowBlocksPipeline_, shaders::shadow_blocks_comp()},
-      {&debugBackgroundPipeline_,
-       fullFloatTargets_ ? shaders::debug_background_rgba32f_comp() : shaders::debug_background_comp()},
+      {&debugBackgroundPipeline_, full ? shaders::debug_background_rgba32f_comp() : shaders::debug_background_comp()},
       {&debugSamplesPipeline_, shaders::debug_samples_comp()},
       {&debugFixupPipeline_, shaders::debug_fixup_comp()},
   }};
@@ -215,8 +215,7 @@ Outcome EpipolarTechnique::createCommonPipelines(const Gpu& gpu) {
   // The one-thread-per-pixel fix-up only where the march runs one thread per sample (serialFixup).
   for (std::uint32_t serial = 0; serial <= (marchParts_ == 1 ? 1u : 0u); ++serial) {
     const std::array<std::pair<std::uint32_t, std::uint32_t>, 1> walk{{{kFixupSerialConstantId, serial}}};
-    const std::span<const std::uint32_t> unwarp =
-        fullFloatTargets_ ? shaders::unwarp_rgba32f_comp() : shaders::unwarp_comp();
+    const std::span<const std::uint32_t> unwarp = full ? shaders::unwarp_rgba32f_comp() : shaders::unwarp_comp();
     if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, unwarp, walk, unwarpPipelines_[serial]); !o) {
       return o;
     }
@@ -249,7 +248,8 @@ Outcome EpipolarTechnique::ensureLightPipelines(const Gpu& gpu, LightType light,
     compiled = true;
     const std::array<std::pair<std::uint32_t, std::uint32_t>, 2> constants{
         {{kLightTypeConstantId, type}, {kFixupSerialConstantId, serialFixup(marchParts_, light) ? 1u : 0u}}};
-    const std::span<const std::uint32_t> fixup = fullFloatTargets_ ? shaders::fixup_rgba32f_comp() : shaders::fixup_comp();
+    const std::span<const std::uint32_t> fixup =
+        scatteringFormat_ == kFullScatteringFormat ? shaders::fixup_rgba32f_comp() : shaders::fixup_comp();
     if (Outcome o = createSpecializedPipeline(gpu, pipelineLayout_, fixup, constants, fixupPipelines_[type]);
         !o) {
       return o;

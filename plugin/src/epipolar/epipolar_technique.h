@@ -57,9 +57,7 @@ class EpipolarTechnique final : public ScatteringTechnique {
   void releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) override;
   [[nodiscard]] ResolutionRequest resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
   [[nodiscard]] bool drawsDebugViews() const override { return true; }
-  [[nodiscard]] VkFormat scatteringFormat() const override {
-    return fullFloatTargets_ ? kFullScatteringFormat : kHalfScatteringFormat;
-  }
+  [[nodiscard]] VkFormat scatteringFormat() const override { return scatteringFormat_; }
   void destroy(const Gpu& gpu) override;
   /// Drops the fix-up list, which holds every pixel of the L_in target: for a new output extent
   /// (the GPU idle). The next prepare() creates it for its target.
@@ -132,7 +130,8 @@ class EpipolarTechnique final : public ScatteringTechnique {
   // march.comp specialised: [light type][light-colour texture].
   std::array<std::array<VkPipeline, 2>, 3> marchPipelines_{};
   std::uint32_t marchParts_ = 1;  ///< march.comp's and the round sizers' TYN_MARCH_PARTS
-  bool fullFloatTargets_ = false;  ///< TechniqueResources::fullFloatTargets: the _rgba32f shader variants
+  /// TechniqueResources::scatteringFormat: kFullScatteringFormat builds the _rgba32f shader variants.
+  VkFormat scatteringFormat_ = kHalfScatteringFormat;
   std::array<VkPipeline, 2> unwarpPipelines_{};
   LightPipelines fixupPipelines_{};  // per light type, each walking as serialFixup says
   VkPipeline scatteringLutPipeline_ = VK_NULL_HANDLE;

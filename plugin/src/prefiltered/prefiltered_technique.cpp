@@ -160,7 +160,7 @@ Outcome validatePrefilteredSettings(const PrefilteredSettings& s) {
 }
 
 Outcome PrefilteredTechnique::create(const Gpu& gpu, const TechniqueResources& resources) {
-  fullFloatTargets_ = resources.fullFloatTargets;
+  scatteringFormat_ = resources.scatteringFormat;
   const VkSampler nearest = resources.nearest;
   const VkSampler linear = resources.linear;
   const std::uint32_t slots = resources.slots;
@@ -242,7 +242,7 @@ Outcome PrefilteredTechnique::createPipelines(const Gpu& gpu) {
   };
   if (Outcome o = make(shaders::moment_shadow_map_comp(), momentMapPipeline_); !o) return o;
   if (Outcome o = make(shaders::epipole_fixup_args_comp(), fixupArgsPipeline_); !o) return o;
-  const bool full = fullFloatTargets_;
+  const bool full = scatteringFormat_ == kFullScatteringFormat;
   if (Outcome o = make(full ? shaders::epipole_fixup_rgba32f_comp() : shaders::epipole_fixup_comp(), fixupPipeline_);
       !o) {
     return o;

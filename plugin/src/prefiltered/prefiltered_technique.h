@@ -44,9 +44,7 @@ class PrefilteredTechnique final : public ScatteringTechnique {
   Outcome prepare(const Gpu& gpu, const FrameInputs& in, TechniqueReport& report) override;
   void releaseRetired(const Gpu& gpu, std::uint64_t frameIndex, std::uint32_t framesInFlight) override;
   [[nodiscard]] ResolutionRequest resolution(const FrameDesc& frame, const ProfileChoice& choice) const override;
-  [[nodiscard]] VkFormat scatteringFormat() const override {
-    return fullFloatTargets_ ? kFullScatteringFormat : kHalfScatteringFormat;
-  }
+  [[nodiscard]] VkFormat scatteringFormat() const override { return scatteringFormat_; }
   /// Records the passes prepare() chose; each is timed and appended to the target's passes.
   void record(const Gpu& gpu, VkCommandBuffer cmd, const RecordTarget& target) override;
 
@@ -95,7 +93,8 @@ class PrefilteredTechnique final : public ScatteringTechnique {
   VkDescriptorSetLayout setLayout_ = VK_NULL_HANDLE;
   VkPipelineLayout pipelineLayout_ = VK_NULL_HANDLE;
   bool pipelinesReady_ = false;
-  bool fullFloatTargets_ = false;  ///< TechniqueResources::fullFloatTargets: the _rgba32f shader variants
+  /// TechniqueResources::scatteringFormat: kFullScatteringFormat builds the _rgba32f shader variants.
+  VkFormat scatteringFormat_ = kHalfScatteringFormat;
   VkPipeline momentMapPipeline_ = VK_NULL_HANDLE;
   std::array<VkPipeline, 6> rectifyPipelines_{};           // per storage variant
   // Prefix sums per PrefixSumScheme (kPrefixSumSchemes), per storage variant.

@@ -435,6 +435,52 @@ TEST(MinMaxMarch, TreeEqualsPlainMarchForEveryMaxStep) {
               "worst plain vs double %.2e of the unshadowed integral\n", rays, worst_tree, worst_double);
 }
 
+// The tree texture's RG16 UNORM round trip as Vulkan defines it: the nearest code, and code / 65535.
+vec2 throughUnorm16(vec2 v) {
+  auto trip = [](float x) { return float(std::lround(std::clamp(double(x), 0.0, 1.0) * 65535.0)) / 65535.0f; };
+  return vec2(trip(v.x), trip(v.y));
+}
+
+TEST(MinMaxStorage, StoredNodesStillBoundTheirDepthsAndMarchTheSame) {
+  // Every depth, as stored and read back, lies within the node's stored bounds; a clear node stays 1.
+  std::mt19937 rng(16);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<float> depths = {0.0f, 1.0f, 1.5f, std::nextafter(1.0f, 0.0f), 1.0f / 65535.0f, 0.5f};
+  for (int code = 0; code <= 65535; code += 97) depths.push_back(float(code) / 65535.0f);
+  for (int i = 0; i < 100000; ++i) depths.push_back(unit(rng));
+  for (float d : depths) {
+    const vec2 stored = throughUnorm16(tyn_min_max_stored_bounds(vec2(d)));
+    ASSERT_LE(stored.x, std::min(d, 1.0f)) << d;
+    ASSERT_GE(stored.y, std::min(d, 1.0f)) << d;
+    if (d >= 1.0f) {
+      ASSERT_EQ(stored, vec2(1.0f)) << d;
+    } else {
+      ASSERT_LT(stored.x, 1.0f) << d;  // else the node would light points beyond it
+    }
+  }
+  // The accelerated march over a stored tree equals the plain march (which reads the map's depths).
+  long rays = 0;
+  for (Profile kind : kProfiles) {
+    for (int n : {64, 512}) {
+      for (int p = 0; p < 5; ++p) {
+        Slice s = makeProfile(kind, n, rng);
+        for (vec2& node : s.row) node = throughUnorm16(tyn_min_max_stored_bounds(node));
+        for (int i = 0; i < 40; ++i, ++rays) {
+          const TynMinMaxRay r = randomRay(n, rng);
+          const TynMinMaxMarch plain = tyn_min_max_march_plain(SliceAccess{&s, -1}, n, r, 0);
+          const int highest = tyn_min_max_highest_level(n);
+          const TynMinMaxMarch tree = tyn_min_max_march_tree(SliceAccess{&s, highest}, n, highest, r, 0);
+          for (int c = 0; c < 3; ++c) {
+            ASSERT_LE(relativeDifference(tree.lit_integral[c], plain.lit_integral[c]), 1e-6)
+                << profileName(kind) << " L " << n << " ray " << i;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GE(rays, 600);
+}
+
 // The whole-ray shadow test the refinement runs before the march (a sample it accepts is set to
 // zero and never marched): whenever it says "shadowed", both marches give exactly zero, for every
 // maximum step; and it does say so for most rays whose plain march is zero.

@@ -40,11 +40,23 @@ uint tyn_epipolar_line_maps() { return frame.light_type == TYN_LIGHT_DIRECTIONAL
 int tyn_shadow_block_size() {
   return int(tyn_epipolar_walks_maps() ? TYN_EPIPOLAR_WALKED_SHADOW_BLOCK : TYN_EPIPOLAR_SHADOW_BLOCK);
 }
-// Pixels the unwarp could not interpolate, count first (read back for the stats).
+// The pixels the unwarp could not interpolate, listed by 2×2 quad of the L_in target: an entry per
+// quad with any, so that the list a target must hold room for is a byte a pixel. Counts first (read
+// back for the stats): the quads listed, the pixels they flag.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_LIST, std430) buffer FixupList {
   uint fixup_count;
-  uint fixup_pixels[];
+  uint fixup_pixel_count;
+  uint fixup_quads[];
 };
+
+// A fix-up entry: the quad's x | y << 14 | its flagged pixels << 28, bit (y & 1) · 2 + (x & 1) for
+// target pixel (x, y). 14 bits hold quads of targets up to 32768 pixels a side, twice the
+// maxImageDimension2D of common devices.
+uint tyn_fixup_quad_entry(uvec2 quad, uint mask) { return quad.x | (quad.y << 14) | (mask << 28); }
+bool tyn_fixup_quad_flags(uint entry, uint bit) { return ((entry >> (28u + bit)) & 1u) != 0u; }
+uvec2 tyn_fixup_quad_pixel(uint entry, uint bit) {
+  return uvec2(((entry & 0x3fffu) << 1) + (bit & 1u), (((entry >> 14) & 0x3fffu) << 1) + (bit >> 1));
+}
 // VkDispatchIndirectCommand for the fix-up pass, then one for the shadow-map blocks pass, which
 // runs (and the fix-up walks the blocks) only where the unwarp finds it worth its cost.
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_FIXUP_ARGS, std430) buffer FixupArgs {
@@ -60,7 +72,7 @@ layout(set = 0, binding = TYN_EPIPOLAR_BINDING_INTERPOLATION_SOURCE, r32ui) unif
 layout(set = 0, binding = TYN_EPIPOLAR_BINDING_SLICE_UV, rgba32f) uniform image2D slice_uv;
 // One row per (slice, map): its 1D min/max binary tree, level after level (min_max_tree.h's
 // layout), at tyn_epipolar_tree_row.
-layout(set = 0, binding = TYN_EPIPOLAR_BINDING_MIN_MAX_TREE, rg32f) uniform image2D min_max_tree;
+layout(set = 0, binding = TYN_EPIPOLAR_BINDING_MIN_MAX_TREE, rg16) uniform image2D min_max_tree;
 // The ray-marching samples the refinement chose, sample | slice << 16, with their count (read back
 // for the stats) and the VkDispatchIndirectCommands that run the passes over them: marching a
 // compact list keeps every lane busy, where a thread per (sample, slice) would idle all but one in

@@ -38,10 +38,8 @@ layout(constant_id = 3) const bool TYN_FIXUP_SERIAL = false;
 
 layout(local_size_x = TYN_SPLIT_MARCH_PARTS) in;
 
-// L_in of the listed pixel `index`; `writer`: the thread that stores it.
-void fix_up(uint index, bool writer) {
-  uint packed = fixup_pixels[index];
-  uvec2 pixel = uvec2(packed & 0xffffu, packed >> 16);  // the L_in target's
+// L_in of a listed pixel of the L_in target; `writer`: the thread that stores it.
+void fix_up(uvec2 pixel, bool writer) {
   uvec2 output_pixel = tyn_output_pixel(pixel);
   float depth = texelFetch(depth_buffer, ivec2(output_pixel), 0).r;
   TynViewRay ray = tyn_view_ray(output_pixel, depth);
@@ -58,14 +56,44 @@ void fix_up(uint index, bool writer) {
   if (writer) imageStore(out_scattering, ivec2(pixel), tyn_target_value(in_scattering));
 }
 
+// Serial: the group's quads' flagged pixels, packed x | y << 16, and their count.
+shared uint group_pixels[4u * TYN_SPLIT_MARCH_PARTS];
+shared uint group_pixel_count;
+
 void main() {
   if (TYN_FIXUP_SERIAL) {
+    // The group takes a quad per thread and walks their flagged pixels a thread each, so that no
+    // lane idles on a quad's unflagged pixels (neighbouring lanes take neighbouring pixels).
     uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-    for (uint index = gl_GlobalInvocationID.x; index < fixup_count; index += stride) fix_up(index, true);
+    for (uint first = gl_WorkGroupID.x * gl_WorkGroupSize.x; first < fixup_count; first += stride) {
+      if (gl_LocalInvocationIndex == 0u) group_pixel_count = 0u;
+      barrier();
+      uint index = first + gl_LocalInvocationIndex;
+      if (index < fixup_count) {
+        uint entry = fixup_quads[index];
+        uint slot = atomicAdd(group_pixel_count, bitCount(entry >> 28));
+        for (uint bit = 0u; bit < 4u; ++bit) {
+          if (!tyn_fixup_quad_flags(entry, bit)) continue;
+          uvec2 pixel = tyn_fixup_quad_pixel(entry, bit);
+          group_pixels[slot++] = pixel.x | (pixel.y << 16);
+        }
+      }
+      barrier();
+      for (uint i = gl_LocalInvocationIndex; i < group_pixel_count; i += gl_WorkGroupSize.x) {
+        uint packed = group_pixels[i];
+        fix_up(uvec2(packed & 0xffffu, packed >> 16), true);
+      }
+      barrier();  // the pixels read before the next quads overwrite them
+    }
   } else {
-    // The whole workgroup walks one pixel: the loop is uniform across it (barriers inside).
-    for (uint index = gl_WorkGroupID.x; index < fixup_count; index += gl_NumWorkGroups.x) {
-      fix_up(index, gl_LocalInvocationID.x == 0u);
+    // The whole workgroup walks one pixel at a time, striding over four slots per listed quad, one
+    // per pixel (skipping those the quad does not flag): the loop and the test are uniform across
+    // the group (barriers inside).
+    for (uint slot = gl_WorkGroupID.x; slot < 4u * fixup_count; slot += gl_NumWorkGroups.x) {
+      uint entry = fixup_quads[slot >> 2];
+      if (tyn_fixup_quad_flags(entry, slot & 3u)) {
+        fix_up(tyn_fixup_quad_pixel(entry, slot & 3u), gl_LocalInvocationID.x == 0u);
+      }
     }
   }
 }

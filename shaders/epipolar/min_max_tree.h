@@ -43,8 +43,10 @@
 // cells [i·2^(l+1), (i+1)·2^(l+1)); level 0 = pairs of cells, level n−1 = the whole slice. Level l
 // starts at column L − (L >> l) of the row, so the full tree takes L − 1 texels (≤ 4095: fits one
 // row of a 4096-wide texture), and a tree built up to `top_level` only takes
-// tyn_min_max_row_length(L, top_level). Format: RG32F (x = min, y = max). IMPORTANT: with RG16F,
-// round min down and max up when storing, or a node may no longer bound its samples.
+// tyn_min_max_row_length(L, top_level). Format: RG16 UNORM (x = min, y = max), stored through
+// tyn_min_max_stored_bounds: min rounded down and max up by a 16-bit code, so that a node still
+// bounds its samples (a looser node only descends more often: the cost, never the answer), and a
+// clear node (1) stays exactly 1.
 //
 // ## Accessors (GLSL has no pointers): define before including, as needed
 //   TYN_MIN_MAX_SHADOW_TEXEL(texel)  float: shadow-map depth of ivec2 texel, 1.0 outside the map
@@ -148,6 +150,16 @@ TYN_FUNC float tyn_min_max_u(vec2 origin_texels, vec2 step_texels, vec2 point_te
 
 // A node from its two children (min of mins, max of maxes); also level 0 from two cells' bounds.
 TYN_FUNC vec2 tyn_min_max_merge(vec2 a, vec2 b) { return vec2(min(a.x, b.x), max(a.y, b.y)); }
+
+// A node's (min, max) as 16-bit UNORM values c / 65535 that still bound it: one code below the
+// floor and one above the ceiling, so that neither the product's rounding nor the conversions
+// (to the code and back to a float) can cross the true bound; 1 (clear) is kept exactly.
+TYN_FUNC vec2 tyn_min_max_stored_bounds(vec2 node) {
+  const float codes = 65535.0f;
+  float low = node.x >= 1.0f ? codes : max(floor(node.x * codes) - 1.0f, 0.0f);
+  float high = node.y >= 1.0f ? codes : min(ceil(node.y * codes) + 1.0f, codes);
+  return vec2(low, high) / codes;
+}
 
 // Bounds of a 2×2 block of depths (e.g. a textureGather's four texels).
 TYN_FUNC vec2 tyn_min_max_footprint_bounds(vec4 depths) {

@@ -72,7 +72,7 @@ void tyn_build_tree(int slice, uint map, vec4 origin_direction) {
   for (int i = thread; i < nodes; i += group) {
     vec2 node = tyn_min_max_level0_node(origin, step, i);
     tyn_nodes[i] = node;
-    imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, 0) + i, row), vec4(node, 0.0, 0.0));
+    imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, 0) + i, row), vec4(tyn_min_max_stored_bounds(node), 0.0, 0.0));
   }
   int from = 0;
   int to = sample_count / 2;
@@ -82,7 +82,7 @@ void tyn_build_tree(int slice, uint map, vec4 origin_direction) {
     for (int i = thread; i < nodes; i += group) {
       vec2 node = tyn_min_max_merge(tyn_nodes[from + 2 * i], tyn_nodes[from + 2 * i + 1]);
       tyn_nodes[to + i] = node;
-      imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, level) + i, row), vec4(node, 0.0, 0.0));
+      imageStore(min_max_tree, ivec2(tyn_min_max_level_offset(sample_count, level) + i, row), vec4(tyn_min_max_stored_bounds(node), 0.0, 0.0));
     }
     int swap = from;
     from = to;

@@ -69,8 +69,9 @@ bool tyn_epipolar_contrast(vec3 a, vec3 b, float threshold) {
 const float TYN_GRAZING_CONTRAST = 0.1;
 
 // `target_pixel`: the L_in target's; its depth, ray and position are those of the output pixel it
-// stands for (at reduced resolution one of its block's), in output pixels like the slices.
-void tyn_unwarp(uvec2 target_pixel) {
+// stands for (at reduced resolution one of its block's), in output pixels like the slices. True
+// when the pixel goes to the fix-up (its L_in stored as 0 until then).
+bool tyn_unwarp(uvec2 target_pixel) {
   uvec2 pixel = tyn_output_pixel(target_pixel);
   vec2 extent = tyn_output_extent();
   vec2 ndc = tyn_ndc_from_pixel(vec2(pixel) + 0.5, extent);
@@ -91,7 +92,7 @@ void tyn_unwarp(uvec2 target_pixel) {
     if (!near_epipole) {
       // Off the slices' arc: the pixel's epipolar plane misses the lit volume (slice_arc.cpp).
       imageStore(out_scattering, ivec2(target_pixel), vec4(0.0));
-      return;
+      return false;
     }
     slice_coordinate = 0.0;  // interpolated from slice 0, then fixed up with the epipole block
   }
@@ -189,17 +190,14 @@ void tyn_unwarp(uvec2 target_pixel) {
   }
   slice_edge = slice_edge || along_edge;
 
-  if (weight_sum >= epipolar.fixup_weight_threshold && !near_epipole && !slice_edge) {
-    imageStore(out_scattering, ivec2(target_pixel), tyn_target_value(sum / weight_sum));
-  } else {
-    uint slot = atomicAdd(fixup_count, 1u);
-    fixup_pixels[slot] = target_pixel.x | (target_pixel.y << 16);
-    imageStore(out_scattering, ivec2(target_pixel), vec4(0.0));
-  }
+  // Negated so that a NaN weight goes to the fix-up too.
+  bool fixup = !(weight_sum >= epipolar.fixup_weight_threshold) || near_epipole || slice_edge;
+  imageStore(out_scattering, ivec2(target_pixel), fixup ? vec4(0.0) : tyn_target_value(sum / weight_sum));
+  return fixup;
 }
 
-// Sizes the indirect fix-up dispatch by the number of flagged pixels: one workgroup per pixel when
-// the fix-up splits each walk over its workgroup, one thread per pixel when it does not
+// Sizes the indirect fix-up dispatch: one workgroup per flagged pixel when the fix-up splits each
+// walk over its workgroup, one thread per listed quad when it does not
 // (fixup.comp), up to the smallest maxComputeWorkGroupCount[0] Vulkan guarantees (the fix-up and
 // its debug view loop over the rest): zero groups, and so no work, when none was flagged.
 // Where a directional light's frame has a block image (EpipolarConstants::shadow_block_side) it also
@@ -209,8 +207,11 @@ void tyn_unwarp(uvec2 target_pixel) {
 // texel or in steps. A walked light's blocks (point) are built before the march, which walks every
 // sample: the groups written here for one are not read.
 void tyn_size_fixup() {
-  uint flagged = atomicAdd(fixup_count, 0u);
-  uint groups = TYN_FIXUP_SERIAL ? (flagged + TYN_EPIPOLAR_FIXUP_GROUP - 1u) / TYN_EPIPOLAR_FIXUP_GROUP : flagged;
+  uint quads = atomicAdd(fixup_count, 0u);
+  uint flagged = atomicAdd(fixup_pixel_count, 0u);
+  // Split: as many groups as flagged pixels, each striding over the quads' four slots per entry,
+  // so that few groups find no pixel to walk (an empty group still costs its start on a CPU driver).
+  uint groups = TYN_FIXUP_SERIAL ? (quads + TYN_EPIPOLAR_FIXUP_GROUP - 1u) / TYN_EPIPOLAR_FIXUP_GROUP : flagged;
   fixup_groups[0] = min(groups, TYN_EPIPOLAR_MAX_GROUPS);
   fixup_groups[1] = 1u;
   fixup_groups[2] = 1u;
@@ -222,8 +223,18 @@ void tyn_size_fixup() {
   shadow_block_groups[2] = frame.shadow_map_count;
 }
 
+// A thread per 2×2 quad of the L_in target, so that it lists the quad's flagged pixels in one entry
+// without sharing them across threads.
 void main() {
-  uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (all(lessThan(pixel, frame.target_extent))) tyn_unwarp(pixel);
+  uvec2 quad = gl_GlobalInvocationID.xy;
+  uint mask = 0u;
+  for (uint bit = 0u; bit < 4u; ++bit) {
+    uvec2 pixel = quad * 2u + uvec2(bit & 1u, bit >> 1);
+    if (all(lessThan(pixel, frame.target_extent)) && tyn_unwarp(pixel)) mask |= 1u << bit;
+  }
+  if (mask != 0u) {
+    fixup_quads[atomicAdd(fixup_count, 1u)] = tyn_fixup_quad_entry(quad, mask);
+    atomicAdd(fixup_pixel_count, bitCount(mask));
+  }
   if (tyn_last_group(TYN_DONE_UNWARP)) tyn_size_fixup();
 }

@@ -19,6 +19,8 @@ namespace {
 constexpr VkFormat kSampleFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 constexpr VkImageUsageFlags kSampleUsage = VK_IMAGE_USAGE_STORAGE_BIT;
 constexpr VkFormat kShadowBlockFormat = VK_FORMAT_R32G32_SFLOAT;  // nearest, farthest depth
+// The min/max trees' nodes, rounded outwards (min_max_tree.h's tyn_min_max_stored_bounds).
+constexpr VkFormat kTreeFormat = VK_FORMAT_R16G16_UNORM;
 constexpr std::uint32_t kBindings = gpu::TYN_EPIPOLAR_BINDING_COUNT;
 // EpipolarConstants' std430 offsets (shaders/epipolar/epipolar_constants.h), row by row.
 static_assert(offsetof(gpu::EpipolarConstants, slice_count) == 16);
@@ -55,6 +57,8 @@ bool serialFixup(std::uint32_t marchParts, LightType light) {
 // rounds' VkDispatchIndirectCommands, the count, the current round, the samples found in shadow,
 // the entries the shadow test read, and the producers' finished workgroups.
 constexpr VkDeviceSize kMarchHeaderWords = 18;
+// The fix-up list's header (epipolar_common.glsl's FixupList): the quads listed, the pixels flagged.
+constexpr VkDeviceSize kFixupHeaderWords = 2;
 constexpr VkDeviceSize kShadowTestArgsOffset = 0;
 constexpr VkDeviceSize kMarchRoundArgsOffset[2] = {3 * sizeof(std::uint32_t), 6 * sizeof(std::uint32_t)};
 // Sample-texture sets of other sizes kept for a switch back (profiles differ in slices and
@@ -357,10 +361,12 @@ Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSetting
                                            VkExtent2D shadowBlocks, VkExtent2D extent, std::uint64_t frameIndex) {
   frameIndex_ = frameIndex;
   // The fix-up list, at the first frame that runs the technique (a context that only runs the
-  // Reference holds none), with an entry per pixel of the L_in target; a larger target replaces it.
-  if (const VkDeviceSize entries = VkDeviceSize(extent.width) * extent.height; entries > fixupEntries_) {
+  // Reference holds none), with an entry per 2×2 quad of the L_in target after its two counts
+  // (epipolar_common.glsl's FixupList); a larger target replaces it.
+  if (const VkDeviceSize entries = VkDeviceSize((extent.width + 1) / 2) * ((extent.height + 1) / 2);
+      entries > fixupEntries_) {
     MappedBuffer list;
-    if (Outcome o = createDeviceBuffer(gpu, (entries + 1) * sizeof(std::uint32_t),
+    if (Outcome o = createDeviceBuffer(gpu, (entries + kFixupHeaderWords) * sizeof(std::uint32_t),
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
                                            VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                                        list);
@@ -411,7 +417,7 @@ Outcome EpipolarTechnique::prepareTextures(const Gpu& gpu, const EpipolarSetting
                           fresh.interpolationSource);
   }
   if (outcome) outcome = createImage(gpu, kSampleFormat, {settings.slices, lineMaps}, kSampleUsage, fresh.sliceUv);
-  if (outcome) outcome = createImage(gpu, VK_FORMAT_R32G32_SFLOAT, {treeWidth, treeRows}, kSampleUsage, fresh.tree);
+  if (outcome) outcome = createImage(gpu, kTreeFormat, {treeWidth, treeRows}, kSampleUsage, fresh.tree);
   if (outcome) {
     const int samples = static_cast<int>(colorSamples);
     const VkExtent2D sums =
@@ -606,7 +612,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   start.memory(kCompute | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0,
                VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
   start.record(gpu, cmd);
-  gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, sizeof(std::uint32_t), 0);
+  gpu.vk.vkCmdFillBuffer(cmd, fixupList_.buffer, 0, kFixupHeaderWords * sizeof(std::uint32_t), 0);
   gpu.vk.vkCmdFillBuffer(cmd, textures_.marchList.buffer, 0, kMarchHeaderWords * sizeof(std::uint32_t), 0);
 
   // One workgroup per slice: its end points, line, tree, colour sums, coordinates and refinement
@@ -639,10 +645,11 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
     pass("epipolar_refine_intensity", owner.refineIntensityPipeline_, [&] { gpu.cmdDispatch(cmd, slices, 1, 1); });
     indirectPass("epipolar_march_refined", march, textures_.marchList.buffer, kMarchRoundArgsOffset[1]);
   }
-  // Interpolates along the slices and across them; its last group sizes the fix-up.
+  // Interpolates along the slices and across them, a thread per 2×2 quad of the target; its last
+  // group sizes the fix-up.
   pass("epipolar_unwarp", owner.unwarpPipelines_[serialFixup(marchParts_, light) ? 1 : 0], [&] {
-    gpu.cmdDispatch(cmd, groups(extent.width, gpu::TYN_PIXEL_GROUP_SIZE),
-                         groups(extent.height, gpu::TYN_PIXEL_GROUP_SIZE), 1);
+    gpu.cmdDispatch(cmd, groups(groups(extent.width, 2), gpu::TYN_PIXEL_GROUP_SIZE),
+                         groups(groups(extent.height, 2), gpu::TYN_PIXEL_GROUP_SIZE), 1);
   });
   // A directional light's fix-up crosses its map block by block (block_walk.glsl) where it walks
   // enough rays to repay the blocks; the unwarp decides, zero groups otherwise.
@@ -669,7 +676,7 @@ void EpipolarTechnique::record(const Gpu& gpu, VkCommandBuffer cmd, const Record
   // The counts go to the slot's readback buffer, read when the slot comes round again.
   memoryBarrier(gpu, cmd, kCompute, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
                 VK_ACCESS_TRANSFER_READ_BIT);
-  const VkBufferCopy fixupCount{0, 0, sizeof(std::uint32_t)};
+  const VkBufferCopy fixupCount{sizeof(std::uint32_t), 0, sizeof(std::uint32_t)};  // the pixels
   const std::array<VkBufferCopy, 2> marchCounts{
       VkBufferCopy{kMarchCountOffset, sizeof(std::uint32_t), sizeof(std::uint32_t)},
       VkBufferCopy{kMarchShadowedOffset, 2 * sizeof(std::uint32_t), 2 * sizeof(std::uint32_t)}};

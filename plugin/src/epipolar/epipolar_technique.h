@@ -160,8 +160,8 @@ class EpipolarTechnique final : public ScatteringTechnique {
   bool shadowBlocksUsed_ = false;  // this frame builds and reads shadowBlocks_
   RetireQueue<OwnedImage> retiredShadowBlocks_;
   // Size-dependent.
-  // Count, then one packed L_in target pixel per entry; from prepare(), for the largest target a
-  // frame has run at (a list too small for a frame's target is retired and replaced).
+  // Two counts, then one entry per listed 2×2 quad of the L_in target; from prepare(), for the
+  // largest target a frame has run at (a list too small for a frame's target is retired and replaced).
   MappedBuffer fixupList_;
   VkDeviceSize fixupEntries_ = 0;
   RetireQueue<MappedBuffer> retiredFixupLists_;

@@ -56,8 +56,8 @@ void fix_up(uvec2 pixel, bool writer) {
   if (writer) imageStore(out_scattering, ivec2(pixel), tyn_target_value(in_scattering));
 }
 
-// Serial: the group's quads' flagged pixels, packed x | y << 16, and their count.
-shared uint group_pixels[4u * TYN_SPLIT_MARCH_PARTS];
+// Serial: the group's quads' flagged pixels as slots (entry · 4 + bit), and their count.
+shared uint group_slots[4u * TYN_SPLIT_MARCH_PARTS];
 shared uint group_pixel_count;
 
 void main() {
@@ -73,15 +73,13 @@ void main() {
         uint entry = fixup_quads[index];
         uint slot = atomicAdd(group_pixel_count, bitCount(entry >> 28));
         for (uint bit = 0u; bit < 4u; ++bit) {
-          if (!tyn_fixup_quad_flags(entry, bit)) continue;
-          uvec2 pixel = tyn_fixup_quad_pixel(entry, bit);
-          group_pixels[slot++] = pixel.x | (pixel.y << 16);
+          if (tyn_fixup_quad_flags(entry, bit)) group_slots[slot++] = index * 4u + bit;
         }
       }
       barrier();
       for (uint i = gl_LocalInvocationIndex; i < group_pixel_count; i += gl_WorkGroupSize.x) {
-        uint packed = group_pixels[i];
-        fix_up(uvec2(packed & 0xffffu, packed >> 16), true);
+        uint listed = group_slots[i];
+        fix_up(tyn_fixup_quad_pixel(fixup_quads[listed >> 2], listed & 3u), true);
       }
       barrier();  // the pixels read before the next quads overwrite them
     }
